@@ -1,0 +1,52 @@
+# Finds every dependency among Debian 12's packages. A missing one stops configuration with
+# the apt-get line that installs it, so a new user is never left guessing.
+
+function(rigidlab_missing what package)
+  message(FATAL_ERROR
+    "rigidlab needs ${what}, which was not found.\n"
+    "Install it with:  apt-get install ${package}\n"
+    "(or install everything at once: see the Quick start in README.md)")
+endfunction()
+
+# Eigen 3 (header only)
+find_package(Eigen3 3.3 QUIET NO_MODULE)
+if(NOT TARGET Eigen3::Eigen)
+  rigidlab_missing("Eigen 3" libeigen3-dev)
+endif()
+
+# Lua 5.4, the build compiled as C++: a Lua error unwinds C++ frames with an exception instead
+# of longjmp, so destructors in the bindings always run.
+find_path(RIGIDLAB_LUA_INCLUDE_DIR lua.hpp PATH_SUFFIXES lua5.4)
+find_library(RIGIDLAB_LUA_LIBRARY NAMES lua5.4-c++)
+if(NOT RIGIDLAB_LUA_INCLUDE_DIR OR NOT RIGIDLAB_LUA_LIBRARY)
+  rigidlab_missing("Lua 5.4 (headers and the C++ build of the library)" liblua5.4-dev)
+endif()
+add_library(Rigidlab::Lua INTERFACE IMPORTED)
+set_target_properties(Rigidlab::Lua PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${RIGIDLAB_LUA_INCLUDE_DIR}"
+  INTERFACE_LINK_LIBRARIES "${RIGIDLAB_LUA_LIBRARY};m;dl")
+
+# libedit: line editing and history for the REPL
+find_path(RIGIDLAB_EDIT_INCLUDE_DIR editline/readline.h)
+find_library(RIGIDLAB_EDIT_LIBRARY NAMES edit)
+if(NOT RIGIDLAB_EDIT_INCLUDE_DIR OR NOT RIGIDLAB_EDIT_LIBRARY)
+  rigidlab_missing("libedit (line editing)" libedit-dev)
+endif()
+add_library(Rigidlab::Edit INTERFACE IMPORTED)
+set_target_properties(Rigidlab::Edit PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${RIGIDLAB_EDIT_INCLUDE_DIR}"
+  INTERFACE_LINK_LIBRARIES "${RIGIDLAB_EDIT_LIBRARY}")
+
+# GoogleTest
+find_package(GTest QUIET)
+if(NOT TARGET GTest::gtest_main)
+  rigidlab_missing("GoogleTest" libgtest-dev)
+endif()
+
+# Google Benchmark
+find_package(benchmark QUIET)
+if(NOT TARGET benchmark::benchmark)
+  rigidlab_missing("Google Benchmark" libbenchmark-dev)
+endif()
+
+find_package(Threads REQUIRED)

@@ -1,0 +1,47 @@
+// Math helpers shared by the whole engine: the vector, matrix and quaternion types, the hat
+// operator, symmetric eigen-decomposition and finiteness checks.
+//
+// Every type is plain doubles with no alignment requirement (Vector3d and Matrix3d are not
+// vectorised by Eigen; the quaternion is declared DontAlign), so values can live anywhere,
+// including inside Lua userdata, which is only 8-byte aligned.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace rigidlab {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Quat = Eigen::Quaternion<double, Eigen::DontAlign>;
+
+// The hat operator: skew(a) * b == a.cross(b).
+Mat3 skew(const Vec3& a);
+
+// Eigen-decomposition of a symmetric matrix: values ascending, axes the matching unit
+// eigenvectors as columns, right-handed (det = +1). Each axis is given the sign that makes its
+// largest-magnitude component positive (the third then flips if needed for det = +1), so the
+// result is the same for the same input.
+struct SymmetricEigen {
+  Vec3 values;
+  Mat3 axes;
+};
+SymmetricEigen symmetric_eigen(const Mat3& symmetric);
+
+// Rotation of `angle` radians about `axis` (any non-zero length). Throws std::invalid_argument
+// for a zero or non-finite axis.
+Quat quat_from_axis_angle(const Vec3& axis, double angle);
+
+// The axis (unit) and angle in [0, pi] of a rotation quaternion (normalised first). For the
+// identity the axis is +x and the angle 0.
+void quat_to_axis_angle(const Quat& q, Vec3& axis, double& angle);
+
+bool is_finite(double x);
+bool is_finite(const Vec3& v);
+bool is_finite(const Mat3& m);
+bool is_finite(const Quat& q);
+
+// Largest |a_ij - a_ji| over the off-diagonal pairs: 0 for an exactly symmetric matrix.
+double asymmetry(const Mat3& m);
+
+}  // namespace rigidlab

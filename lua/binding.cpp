@@ -1,0 +1,290 @@
+#include "lua/binding.hpp"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+namespace rigidlab::lua {
+
+const char vec3_metatable_key = 0;
+const char mat3_metatable_key = 0;
+const char quat_metatable_key = 0;
+
+namespace {
+// Registry table: function (or topic table) -> light userdata pointing at its Entry.
+const char entries_key = 0;
+
+void push_entries_table(lua_State* L) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &entries_key) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &entries_key);
+  }
+}
+
+// The qualified name of the running C function and whether it was called as a method.
+const char* running_function_name(lua_State* L, lua_Debug& ar, bool& is_method) {
+  is_method = false;
+  if (!lua_getstack(L, 0, &ar)) return nullptr;
+  lua_getinfo(L, "nf", &ar);
+  const Entry* entry = find_entry(L, -1);
+  lua_pop(L, 1);
+  is_method = ar.namewhat != nullptr && std::strcmp(ar.namewhat, "method") == 0;
+  if (entry != nullptr) return entry->qualified;
+  return ar.name != nullptr ? ar.name : "?";
+}
+}  // namespace
+
+void register_entries(lua_State* L, int table_index, const Entry* entries, int upvalues) {
+  table_index = lua_absindex(L, table_index);
+  const int first_upvalue = lua_gettop(L) - upvalues + 1;
+  push_entries_table(L);
+  for (const Entry* e = entries; e->name != nullptr; ++e) {
+    for (int i = 0; i < upvalues; ++i) lua_pushvalue(L, first_upvalue + i);
+    lua_pushcclosure(L, e->function, upvalues);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, table_index, e->name);
+    lua_pushlightuserdata(L, const_cast<Entry*>(e));
+    lua_rawset(L, -3);
+  }
+  lua_pop(L, 1 + upvalues);
+}
+
+void register_topic(lua_State* L, int value_index, const char* qualified, const char* doc) {
+  // Topics need an Entry that outlives the state: they are static strings, so a small
+  // userdata kept alive by the entries table holds the Entry.
+  value_index = lua_absindex(L, value_index);
+  push_entries_table(L);
+  lua_pushvalue(L, value_index);
+  auto* entry = static_cast<Entry*>(lua_newuserdatauv(L, sizeof(Entry), 0));
+  *entry = Entry{qualified, nullptr, qualified, qualified, doc};
+  lua_rawset(L, -3);
+  lua_pop(L, 1);
+}
+
+const Entry* find_entry(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  push_entries_table(L);
+  lua_pushvalue(L, index);
+  lua_rawget(L, -2);
+  const Entry* entry = static_cast<const Entry*>(lua_touserdata(L, -1));
+  lua_pop(L, 2);
+  return entry;
+}
+
+void arg_error(lua_State* L, int arg, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  const char* message = lua_pushvfstring(L, format, args);
+  va_end(args);
+  lua_Debug ar;
+  bool is_method = false;
+  const char* name = running_function_name(L, ar, is_method);
+  if (name == nullptr) luaL_error(L, "bad argument #%d (%s)", arg, message);
+  if (is_method) {
+    --arg;  // do not count self, as luaL_argerror
+    if (arg == 0) luaL_error(L, "calling '%s' on bad self (%s)", name, message);
+  }
+  luaL_error(L, "bad argument #%d to '%s' (%s)", arg, name, message);
+  std::abort();  // luaL_error does not return
+}
+
+void type_error(lua_State* L, int arg, const char* expected) {
+  const char* got;
+  if (luaL_getmetafield(L, arg, "__name") == LUA_TSTRING)
+    got = lua_tostring(L, -1);
+  else if (lua_type(L, arg) == LUA_TLIGHTUSERDATA)
+    got = "light userdata";
+  else
+    got = luaL_typename(L, arg);
+  arg_error(L, arg, "%s expected, got %s", expected, got);
+}
+
+void function_error(lua_State* L, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  const char* message = lua_pushvfstring(L, format, args);
+  va_end(args);
+  lua_Debug ar;
+  bool is_method = false;
+  const char* name = running_function_name(L, ar, is_method);
+  luaL_error(L, "'%s': %s", name != nullptr ? name : "?", message);
+  std::abort();
+}
+
+void check_no_extra_args(lua_State* L, int max_args) {
+  const int top = lua_gettop(L);
+  if (top > max_args)
+    arg_error(L, max_args + 1, "no more than %d argument%s expected, got %d", max_args,
+              max_args == 1 ? "" : "s", top);
+}
+
+double check_finite(lua_State* L, int arg, const char* what) {
+  if (lua_type(L, arg) != LUA_TNUMBER) type_error(L, arg, "number");
+  const double x = lua_tonumber(L, arg);
+  if (!std::isfinite(x))
+    arg_error(L, arg, "%s must be finite, got %s", what, format_number(x).c_str());
+  return x;
+}
+
+double check_positive(lua_State* L, int arg, const char* what) {
+  const double x = check_finite(L, arg, what);
+  if (!(x > 0.0)) arg_error(L, arg, "%s must be > 0, got %s", what, format_number(x).c_str());
+  return x;
+}
+
+double check_nonnegative(lua_State* L, int arg, const char* what) {
+  const double x = check_finite(L, arg, what);
+  if (!(x >= 0.0)) arg_error(L, arg, "%s must be >= 0, got %s", what, format_number(x).c_str());
+  return x;
+}
+
+double opt_finite(lua_State* L, int arg, const char* what, double fallback) {
+  return lua_isnoneornil(L, arg) ? fallback : check_finite(L, arg, what);
+}
+
+void new_metatable(lua_State* L, const char* type_name, const void* key) {
+  lua_createtable(L, 0, 16);
+  lua_pushstring(L, type_name);
+  lua_setfield(L, -2, "__name");
+  lua_pushstring(L, type_name);
+  lua_setfield(L, -2, "__metatable");
+  lua_pushvalue(L, -1);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, key);
+}
+
+bool has_metatable(lua_State* L, int index, const void* key) {
+  if (lua_type(L, index) != LUA_TUSERDATA || !lua_getmetatable(L, index)) return false;
+  lua_rawgetp(L, LUA_REGISTRYINDEX, key);
+  const bool same = lua_rawequal(L, -1, -2);
+  lua_pop(L, 2);
+  return same;
+}
+
+namespace {
+template <class T>
+T* test_userdata(lua_State* L, int index, const void* key) {
+  return has_metatable(L, index, key) ? static_cast<T*>(lua_touserdata(L, index)) : nullptr;
+}
+
+template <class T>
+T& push_userdata(lua_State* L, const T& value, const void* key) {
+  void* memory = lua_newuserdatauv(L, sizeof(T), 0);
+  T* object = new (memory) T(value);
+  lua_rawgetp(L, LUA_REGISTRYINDEX, key);
+  lua_setmetatable(L, -2);
+  return *object;
+}
+}  // namespace
+
+Vec3* test_vec3(lua_State* L, int index) { return test_userdata<Vec3>(L, index, &vec3_metatable_key); }
+Mat3* test_mat3(lua_State* L, int index) { return test_userdata<Mat3>(L, index, &mat3_metatable_key); }
+Quat* test_quat(lua_State* L, int index) { return test_userdata<Quat>(L, index, &quat_metatable_key); }
+
+Vec3& check_vec3(lua_State* L, int arg) {
+  Vec3* v = test_vec3(L, arg);
+  if (v == nullptr) type_error(L, arg, "vec3");
+  return *v;
+}
+Mat3& check_mat3(lua_State* L, int arg) {
+  Mat3* m = test_mat3(L, arg);
+  if (m == nullptr) type_error(L, arg, "mat3");
+  return *m;
+}
+Quat& check_quat(lua_State* L, int arg) {
+  Quat* q = test_quat(L, arg);
+  if (q == nullptr) type_error(L, arg, "quat");
+  return *q;
+}
+
+Vec3& push_vec3(lua_State* L, const Vec3& v) { return push_userdata(L, v, &vec3_metatable_key); }
+Mat3& push_mat3(lua_State* L, const Mat3& m) { return push_userdata(L, m, &mat3_metatable_key); }
+Quat& push_quat(lua_State* L, const Quat& q) { return push_userdata(L, q, &quat_metatable_key); }
+
+int get_field(lua_State* L, int arg, const char* name) { return lua_getfield(L, arg, name); }
+
+void check_fields(lua_State* L, int arg, const char* const* allowed) {
+  arg = lua_absindex(L, arg);
+  lua_pushnil(L);
+  while (lua_next(L, arg) != 0) {
+    lua_pop(L, 1);  // value
+    bool known = false;
+    if (lua_type(L, -1) == LUA_TSTRING) {
+      const char* key = lua_tostring(L, -1);
+      for (const char* const* a = allowed; *a != nullptr && !known; ++a)
+        known = std::strcmp(*a, key) == 0;
+    }
+    if (!known) {
+      luaL_Buffer list;
+      luaL_buffinit(L, &list);
+      for (const char* const* a = allowed; *a != nullptr; ++a) {
+        if (a != allowed) luaL_addstring(&list, ", ");
+        luaL_addstring(&list, *a);
+      }
+      luaL_pushresult(&list);
+      const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2)
+                                                        : luaL_tolstring(L, -2, nullptr);
+      arg_error(L, arg, "unknown field '%s' (fields are: %s)", key, lua_tostring(L, -2));
+    }
+  }
+}
+
+namespace {
+double field_number(lua_State* L, int arg, const char* name, double fallback, bool required,
+                    bool positive) {
+  const int type = get_field(L, arg, name);
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    if (required) arg_error(L, arg, "field '%s' is required", name);
+    return fallback;
+  }
+  if (type != LUA_TNUMBER)
+    arg_error(L, arg, "field '%s' must be a number, got %s", name, luaL_typename(L, -1));
+  const double x = lua_tonumber(L, -1);
+  lua_pop(L, 1);
+  if (!std::isfinite(x))
+    arg_error(L, arg, "field '%s' must be finite, got %s", name, format_number(x).c_str());
+  if (positive && !(x > 0.0))
+    arg_error(L, arg, "field '%s' must be > 0, got %s", name, format_number(x).c_str());
+  return x;
+}
+}  // namespace
+
+double field_finite(lua_State* L, int arg, const char* name, double fallback, bool required) {
+  return field_number(L, arg, name, fallback, required, false);
+}
+
+double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required) {
+  return field_number(L, arg, name, fallback, required, true);
+}
+
+Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required) {
+  const int type = get_field(L, arg, name);
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    if (required) arg_error(L, arg, "field '%s' is required", name);
+    return fallback;
+  }
+  const Vec3* v = test_vec3(L, -1);
+  if (v == nullptr) {
+    const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
+                                                                        : luaL_typename(L, -1);
+    arg_error(L, arg, "field '%s' must be a vec3, got %s", name, got);
+  }
+  const Vec3 result = *v;
+  lua_pop(L, 1);
+  return result;
+}
+
+std::string format_number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.14g", x);
+  return buffer;
+}
+
+}  // namespace rigidlab::lua

@@ -1,0 +1,94 @@
+// The one toolbox every binding file uses: argument checking in luaL_argerror's style with the
+// qualified function name ('inertia.solid_box', 'vec3:cross'), the userdata of the math types,
+// and the registration of functions together with their help text.
+//
+// Conventions (see STYLE.md "Take" 2-4): a binding function checks its arguments, calls the
+// engine, pushes results. Engine exceptions never cross Lua: wrap engine calls that may throw
+// in `call_engine`. Every registered function has an `Entry` with its signature and doc, so
+// `help()` and error messages find it by the function value.
+#pragma once
+
+#include <lua.hpp>
+
+#include <string>
+
+#include "engine/math.hpp"
+
+namespace rigidlab::lua {
+
+// A documented Lua function. `name` is the key in its table; `qualified` the name users see
+// in errors and help ('vec3:cross', 'inertia.solid_box'); `signature` and `doc` feed help().
+struct Entry {
+  const char* name;
+  lua_CFunction function;
+  const char* qualified;
+  const char* signature;
+  const char* doc;
+};
+
+// Sets each entry's function as field `name` of the table at `table_index` and records it for
+// help() and for error messages. The array ends with an entry whose name is nullptr. Like
+// luaL_setfuncs, `upvalues` values on top of the stack become every function's upvalues and
+// are popped.
+void register_entries(lua_State* L, int table_index, const Entry* entries, int upvalues = 0);
+// Records a documented topic that is not a function (a type or module table) for help().
+void register_topic(lua_State* L, int value_index, const char* qualified, const char* doc);
+// The Entry of the C function at `index`, or nullptr.
+const Entry* find_entry(lua_State* L, int index);
+
+// luaL_argerror with the qualified name of the running C function: in a method call
+// (`v:cross(5)`) `arg` counts from the first argument after self, as Lua's own does.
+[[noreturn]] void arg_error(lua_State* L, int arg, const char* format, ...);
+// "<expected> expected, got <type>", where <type> names rigidlab types by name.
+[[noreturn]] void type_error(lua_State* L, int arg, const char* expected);
+// luaL_error prefixed with the qualified name of the running function: "'world:step': ...".
+[[noreturn]] void function_error(lua_State* L, const char* format, ...);
+// Raises an error for arguments past the last one a function takes: a silently ignored
+// argument hides a typo. `max_args` counts self for methods.
+void check_no_extra_args(lua_State* L, int max_args);
+
+// Numbers: must be a number (not a numeric string), finite.
+double check_finite(lua_State* L, int arg, const char* what);
+double check_positive(lua_State* L, int arg, const char* what);      // finite and > 0
+double check_nonnegative(lua_State* L, int arg, const char* what);   // finite and >= 0
+double opt_finite(lua_State* L, int arg, const char* what, double fallback);
+
+// Math userdata. `test_*` returns nullptr when the value is not of that type; `check_*`
+// raises "vec3 expected, got number". `push_*` creates a new value.
+Vec3* test_vec3(lua_State* L, int index);
+Vec3& check_vec3(lua_State* L, int arg);
+Vec3& push_vec3(lua_State* L, const Vec3& v);
+Mat3* test_mat3(lua_State* L, int index);
+Mat3& check_mat3(lua_State* L, int arg);
+Mat3& push_mat3(lua_State* L, const Mat3& m);
+Quat* test_quat(lua_State* L, int index);
+Quat& check_quat(lua_State* L, int arg);
+Quat& push_quat(lua_State* L, const Quat& q);
+
+// Registry keys of the metatables (their addresses are the keys; see lua_rawgetp).
+extern const char vec3_metatable_key;
+extern const char mat3_metatable_key;
+extern const char quat_metatable_key;
+
+// Creates a protected metatable for a userdata type and stores it in the registry under
+// `key`: `__name` is `type_name`, `__metatable` hides it from getmetatable/setmetatable.
+// Leaves the metatable on the stack.
+void new_metatable(lua_State* L, const char* type_name, const void* key);
+// 1 when the value at `index` is a userdata whose metatable is the one stored under `key`.
+bool has_metatable(lua_State* L, int index, const void* key);
+
+// Table-argument helpers for constructors like body{mass = 1, ...}: push field `name` of the
+// table at `arg` and return its Lua type (LUA_TNIL when absent).
+int get_field(lua_State* L, int arg, const char* name);
+// Refuses keys of the table at `arg` that are not in `allowed` (nullptr-terminated): a
+// misspelt field ("radious") would otherwise be silently ignored.
+void check_fields(lua_State* L, int arg, const char* const* allowed);
+// Field errors read "bad argument #1 to 'body' (field 'mass' must be > 0, got -1)".
+double field_finite(lua_State* L, int arg, const char* name, double fallback, bool required);
+double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required);
+Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required);
+
+// Formats a number the way Lua's tostring does ("%.14g"), integers without ".0".
+std::string format_number(double x);
+
+}  // namespace rigidlab::lua

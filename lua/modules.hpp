@@ -1,0 +1,14 @@
+// The open functions of every binding file. Each sets its names as fields of the table at
+// `lib` (the table `require("rigidlab")` returns). Add one line here and one in rigidlab.cpp
+// per new binding file.
+#pragma once
+
+#include <lua.hpp>
+
+namespace rigidlab::lua {
+
+void open_vec3(lua_State* L, int lib);
+void open_mat3(lua_State* L, int lib);
+void open_quat(lua_State* L, int lib);
+
+}  // namespace rigidlab::lua

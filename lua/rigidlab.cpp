@@ -1,0 +1,31 @@
+#include "lua/rigidlab.hpp"
+
+#include <cstring>
+
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+
+int open_library(lua_State* L) {
+  lua_newtable(L);
+  const int lib = lua_gettop(L);
+  open_vec3(L, lib);
+  lua_pushliteral(L, RIGIDLAB_VERSION);
+  lua_setfield(L, lib, "version");
+  return 1;
+}
+
+void open_all(lua_State* L) {
+  luaL_openlibs(L);
+  luaL_requiref(L, "rigidlab", open_library, 0);
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {  // copy every name but `version` to the globals
+    if (lua_type(L, -2) == LUA_TSTRING && std::strcmp(lua_tostring(L, -2), "version") != 0)
+      lua_setglobal(L, lua_tostring(L, -2));
+    else
+      lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+}  // namespace rigidlab::lua
