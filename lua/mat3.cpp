@@ -1,1 +1,358 @@
-namespace rigidlab::lua { }
+// mat3: a 3x3 matrix value (Eigen::Matrix3d in a userdata), immutable like a number: every
+// operation returns a new matrix. Built from 9 numbers in row-major order or from a table of
+// three rows. Entries are always finite.
+#include <Eigen/LU>
+#include <cmath>
+#include <string>
+
+#include "lua/binding.hpp"
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+Mat3& push_finite_mat3(lua_State* L, const Mat3& m) {
+  if (!is_finite(m)) function_error(L, "result is not finite (overflow or invalid operation)");
+  return push_mat3(L, m);
+}
+
+// One row of mat3{{..},{..},{..}}: a table of three finite numbers.
+void read_row(lua_State* L, int row, Mat3& m) {
+  if (lua_geti(L, 1, row + 1) != LUA_TTABLE)
+    arg_error(L, 1, "row %d must be a table of 3 numbers, got %s", row + 1, luaL_typename(L, -1));
+  if (luaL_len(L, -1) != 3)
+    arg_error(L, 1, "row %d must have 3 numbers, got %d", row + 1, (int)luaL_len(L, -1));
+  for (int j = 0; j < 3; ++j) {
+    if (lua_geti(L, -1, j + 1) != LUA_TNUMBER)
+      arg_error(L, 1, "entry (%d, %d) must be a number, got %s", row + 1, j + 1,
+                luaL_typename(L, -1));
+    const double x = lua_tonumber(L, -1);
+    if (!std::isfinite(x))
+      arg_error(L, 1, "entry (%d, %d) must be finite, got %s", row + 1, j + 1,
+                format_number(x).c_str());
+    m(row, j) = x;
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+// mat3(a11, a12, a13, a21, a22, a23, a31, a32, a33) or mat3{{a11, a12, a13}, {...}, {...}}.
+int mat3_call(lua_State* L) {
+  lua_remove(L, 1);  // the mat3 table itself
+  Mat3 m;
+  if (lua_gettop(L) == 1 && lua_type(L, 1) == LUA_TTABLE) {
+    if (luaL_len(L, 1) != 3) arg_error(L, 1, "a table of 3 rows expected, got %d rows",
+                                       (int)luaL_len(L, 1));
+    for (int i = 0; i < 3; ++i) read_row(L, i, m);
+  } else {
+    if (lua_gettop(L) != 9)
+      function_error(L, "9 numbers (row-major) or a table of 3 rows expected, got %d arguments",
+                     lua_gettop(L));
+    for (int k = 0; k < 9; ++k) {
+      const std::string name = "a" + std::to_string(k / 3 + 1) + std::to_string(k % 3 + 1);
+      m(k / 3, k % 3) = check_finite(L, k + 1, name.c_str());
+    }
+  }
+  push_mat3(L, m);
+  return 1;
+}
+
+int mat3_identity(lua_State* L) {
+  check_no_extra_args(L, 0);
+  push_mat3(L, Mat3::Identity());
+  return 1;
+}
+
+int mat3_zero(lua_State* L) {
+  check_no_extra_args(L, 0);
+  push_mat3(L, Mat3::Zero());
+  return 1;
+}
+
+// mat3.diag(a, b, c) or mat3.diag(v)
+int mat3_diag(lua_State* L) {
+  Vec3 d;
+  if (const Vec3* v = test_vec3(L, 1)) {
+    check_no_extra_args(L, 1);
+    d = *v;
+  } else {
+    check_no_extra_args(L, 3);
+    d = Vec3(check_finite(L, 1, "a"), check_finite(L, 2, "b"), check_finite(L, 3, "c"));
+  }
+  push_mat3(L, d.asDiagonal());
+  return 1;
+}
+
+int mat3_skew(lua_State* L) {
+  const Vec3& v = check_vec3(L, 1);
+  check_no_extra_args(L, 1);
+  push_mat3(L, skew(v));
+  return 1;
+}
+
+int check_index(lua_State* L, int arg, const char* what) {
+  if (!lua_isinteger(L, arg)) {
+    if (lua_type(L, arg) != LUA_TNUMBER) type_error(L, arg, "integer");
+    arg_error(L, arg, "%s must be an integer 1, 2 or 3, got %s", what,
+              format_number(lua_tonumber(L, arg)).c_str());
+  }
+  const lua_Integer i = lua_tointeger(L, arg);
+  if (i < 1 || i > 3) arg_error(L, arg, "%s must be 1, 2 or 3, got %I", what, i);
+  return static_cast<int>(i - 1);
+}
+
+int mat3_get(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  const int i = check_index(L, 2, "row");
+  const int j = check_index(L, 3, "column");
+  check_no_extra_args(L, 3);
+  lua_pushnumber(L, m(i, j));
+  return 1;
+}
+
+int mat3_row(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  const int i = check_index(L, 2, "row");
+  check_no_extra_args(L, 2);
+  push_vec3(L, m.row(i).transpose());
+  return 1;
+}
+
+int mat3_col(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  const int j = check_index(L, 2, "column");
+  check_no_extra_args(L, 2);
+  push_vec3(L, m.col(j));
+  return 1;
+}
+
+int mat3_transpose(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  push_mat3(L, m.transpose());
+  return 1;
+}
+
+int mat3_inverse(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  // Full-pivot LU decides invertibility relative to the matrix's own scale, so a tensor of
+  // 1e-6 kg m² is not called singular merely for being small.
+  const Eigen::FullPivLU<Mat3> lu(m);
+  if (!lu.isInvertible())
+    arg_error(L, 1, "matrix is singular (rank %d, det = %s)", (int)lu.rank(),
+              format_number(m.determinant()).c_str());
+  push_finite_mat3(L, lu.inverse());
+  return 1;
+}
+
+int mat3_det(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, m.determinant());
+  return 1;
+}
+
+int mat3_trace(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, m.trace());
+  return 1;
+}
+
+// values (ascending, vec3), axes (mat3, columns = unit eigenvectors, det +1). Only for
+// symmetric matrices: a non-symmetric one is refused rather than silently symmetrised.
+int mat3_eigen(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  const double scale = m.cwiseAbs().maxCoeff();
+  if (asymmetry(m) > 1e-12 * scale)
+    arg_error(L, 1, "matrix must be symmetric (largest |a_ij - a_ji| = %s)",
+              format_number(asymmetry(m)).c_str());
+  const SymmetricEigen e = symmetric_eigen(0.5 * (m + m.transpose()));
+  push_vec3(L, e.values);
+  push_mat3(L, e.axes);
+  return 2;
+}
+
+int mat3_unpack(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  for (int k = 0; k < 9; ++k) lua_pushnumber(L, m(k / 3, k % 3));
+  return 9;
+}
+
+void check_two_mat3(lua_State* L, const Mat3*& a, const Mat3*& b) {
+  a = test_mat3(L, 1);
+  b = test_mat3(L, 2);
+  if (a == nullptr) type_error(L, 1, "mat3");
+  if (b == nullptr) type_error(L, 2, "mat3");
+}
+
+int mat3_add(lua_State* L) {
+  const Mat3 *a, *b;
+  check_two_mat3(L, a, b);
+  push_finite_mat3(L, *a + *b);
+  return 1;
+}
+
+int mat3_sub(lua_State* L) {
+  const Mat3 *a, *b;
+  check_two_mat3(L, a, b);
+  push_finite_mat3(L, *a - *b);
+  return 1;
+}
+
+int mat3_unm(lua_State* L) {
+  push_mat3(L, -check_mat3(L, 1));
+  return 1;
+}
+
+// M * v, M * N, M * s, s * M. A vec3 on the left is refused: vectors are columns.
+int mat3_mul(lua_State* L) {
+  const Mat3* a = test_mat3(L, 1);
+  if (a == nullptr) {  // s * M, or v * M
+    if (test_vec3(L, 1) != nullptr)
+      arg_error(L, 1, "vec3 * mat3 is not defined (vectors are columns): use M * v or "
+                      "M:transpose() * v");
+    if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "number");
+    push_finite_mat3(L, lua_tonumber(L, 1) * check_mat3(L, 2));
+  } else if (const Vec3* v = test_vec3(L, 2)) {
+    const Vec3 result = *a * *v;
+    if (!is_finite(result)) function_error(L, "result is not finite (overflow)");
+    push_vec3(L, result);
+  } else if (const Mat3* b = test_mat3(L, 2)) {
+    push_finite_mat3(L, *a * *b);
+  } else if (lua_type(L, 2) == LUA_TNUMBER) {
+    push_finite_mat3(L, *a * lua_tonumber(L, 2));
+  } else {
+    type_error(L, 2, "vec3, mat3 or number");
+  }
+  return 1;
+}
+
+int mat3_div(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  const double s = check_finite(L, 2, "divisor");
+  if (s == 0.0) arg_error(L, 2, "division of a mat3 by zero");
+  push_finite_mat3(L, m / s);
+  return 1;
+}
+
+int mat3_eq(lua_State* L) {
+  const Mat3* a = test_mat3(L, 1);
+  const Mat3* b = test_mat3(L, 2);
+  lua_pushboolean(L, a != nullptr && b != nullptr && *a == *b);
+  return 1;
+}
+
+// Rows in the vec3 style: ((1, 0, 0), (0, 1, 0), (0, 0, 1)).
+int mat3_tostring(lua_State* L) {
+  const Mat3& m = check_mat3(L, 1);
+  std::string text = "(";
+  for (int i = 0; i < 3; ++i) {
+    text += i == 0 ? "(" : ", (";
+    for (int j = 0; j < 3; ++j) text += (j == 0 ? "" : ", ") + format_number(m(i, j));
+    text += ")";
+  }
+  text += ")";
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+int mat3_concat(lua_State* L) {
+  luaL_tolstring(L, 1, nullptr);
+  luaL_tolstring(L, 2, nullptr);
+  lua_concat(L, 2);
+  return 1;
+}
+
+int mat3_index(lua_State* L) {
+  check_mat3(L, 1);
+  lua_pushvalue(L, 2);
+  if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  luaL_error(L, "mat3 has no field '%s' (use M:get(i, j), M:row(i), M:col(j); see help(\"mat3\"))",
+             luaL_tolstring(L, 2, nullptr));
+  return 0;
+}
+
+int mat3_newindex(lua_State* L) {
+  check_mat3(L, 1);
+  luaL_error(L, "mat3 values are immutable: build a new one with mat3(...)");
+  return 0;
+}
+
+const Entry methods[] = {
+    {"get", mat3_get, "mat3:get", "M:get(i, j) -> number", "Entry in row i, column j (1-based)."},
+    {"row", mat3_row, "mat3:row", "M:row(i) -> vec3", "Row i as a vec3."},
+    {"col", mat3_col, "mat3:col", "M:col(j) -> vec3", "Column j as a vec3."},
+    {"transpose", mat3_transpose, "mat3:transpose", "M:transpose() -> mat3", "Mᵀ."},
+    {"inverse", mat3_inverse, "mat3:inverse", "M:inverse() -> mat3",
+     "M⁻¹. Error if M is singular (decided by full-pivot LU, relative to M's scale)."},
+    {"det", mat3_det, "mat3:det", "M:det() -> number", "Determinant."},
+    {"trace", mat3_trace, "mat3:trace", "M:trace() -> number", "Sum of the diagonal."},
+    {"eigen", mat3_eigen, "mat3:eigen", "M:eigen() -> values, axes",
+     "For a symmetric M: eigenvalues ascending (vec3) and a mat3 whose columns are the matching\n"
+     "unit eigenvectors, right-handed (det = +1): M * axes == axes * mat3.diag(values).\n"
+     "Each axis has its largest component positive (the third may flip to keep det = +1)."},
+    {"unpack", mat3_unpack, "mat3:unpack", "M:unpack() -> a11, a12, ..., a33",
+     "The nine entries in row-major order."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry functions[] = {
+    {"identity", mat3_identity, "mat3.identity", "mat3.identity() -> mat3", "The identity E."},
+    {"zero", mat3_zero, "mat3.zero", "mat3.zero() -> mat3", "The zero matrix."},
+    {"diag", mat3_diag, "mat3.diag", "mat3.diag(a, b, c) or mat3.diag(v) -> mat3",
+     "Diagonal matrix with a, b, c (or v.x, v.y, v.z) on the diagonal."},
+    {"skew", mat3_skew, "mat3.skew", "mat3.skew(v) -> mat3",
+     "The hat operator v̂: mat3.skew(v) * w == v:cross(w)."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry metamethods[] = {
+    {"__add", mat3_add, "mat3.__add", "M + N", "Sum."},
+    {"__sub", mat3_sub, "mat3.__sub", "M - N", "Difference."},
+    {"__unm", mat3_unm, "mat3.__unm", "-M", "Negation."},
+    {"__mul", mat3_mul, "mat3.__mul", "M * v, M * N, M * s, s * M", "Products."},
+    {"__div", mat3_div, "mat3.__div", "M / s", "Division by a non-zero number."},
+    {"__eq", mat3_eq, "mat3.__eq", "M == N", "Exact equality of all entries."},
+    {"__tostring", mat3_tostring, "mat3.__tostring", "tostring(M)", "Rows: ((a11, a12, a13), ...)."},
+    {"__concat", mat3_concat, "mat3.__concat", "s .. M", "Concatenation as tostring."},
+    {"__newindex", mat3_newindex, "mat3.__newindex", "", "Matrices are immutable."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry index_entry[] = {
+    {"__index", mat3_index, "mat3.__index", "M:method()", "Methods."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry constructor[] = {
+    {"__call", mat3_call, "mat3",
+     "mat3(a11, a12, a13, a21, a22, a23, a31, a32, a33) or mat3{{a11, a12, a13}, {...}, {...}}",
+     "A 3x3 matrix, row-major. Immutable: operations return new matrices.\n"
+     "Functions: mat3.identity(), mat3.zero(), mat3.diag(a, b, c), mat3.skew(v).\n"
+     "Operators: M * v, M * N, M * s, s * M, M / s, M + N, M - N, -M, M == N (exact).\n"
+     "Methods: get, row, col, transpose, inverse, det, trace, eigen, unpack."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+}  // namespace
+
+void open_mat3(lua_State* L, int lib) {
+  new_metatable(L, "mat3", &mat3_metatable_key);
+  register_entries(L, -1, metamethods);
+  lua_newtable(L);  // methods, the upvalue of __index
+  register_entries(L, -1, methods);
+  register_entries(L, -2, index_entry, 1);
+  lua_pop(L, 1);
+
+  lua_newtable(L);  // the callable `mat3` table
+  register_entries(L, -1, functions);
+  register_entries(L, -1, methods);  // mat3.transpose(M) works as M:transpose()
+  lua_newtable(L);
+  register_entries(L, -1, constructor);
+  lua_pushliteral(L, "mat3");
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  register_topic(L, -1, "mat3", constructor[0].doc);
+  lua_setfield(L, lib, "mat3");
+}
+
+}  // namespace rigidlab::lua

@@ -1,1 +1,327 @@
-namespace rigidlab::lua { }
+// quat: a quaternion value w + xi + yj + zk (four doubles in a userdata), mainly as a rotation.
+// Fields w, x, y, z (read/write). Rotations use the normalised quaternion, so a slightly
+// drifted one still rotates correctly; the zero quaternion, which is no rotation, is refused
+// wherever a rotation is needed.
+#include <cmath>
+
+#include "lua/binding.hpp"
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+Quat& push_finite_quat(lua_State* L, const Quat& q) {
+  if (!is_finite(q)) function_error(L, "result is not finite (overflow or invalid operation)");
+  return push_quat(L, q);
+}
+
+// The quaternion at `arg` as a unit rotation; error for the zero quaternion.
+Quat check_rotation(lua_State* L, int arg) {
+  const Quat& q = check_quat(L, arg);
+  const double n = q.norm();
+  if (!(n > 0.0)) arg_error(L, arg, "the zero quaternion is not a rotation");
+  return Quat(q.coeffs() / n);
+}
+
+// quat(w, x, y, z); quat() is the identity.
+int quat_call(lua_State* L) {
+  lua_remove(L, 1);  // the quat table itself
+  if (lua_gettop(L) == 0) {
+    push_quat(L, Quat::Identity());
+    return 1;
+  }
+  check_no_extra_args(L, 4);
+  if (lua_gettop(L) != 4) function_error(L, "4 numbers (w, x, y, z) expected, got %d", lua_gettop(L));
+  push_quat(L, Quat(check_finite(L, 1, "w"), check_finite(L, 2, "x"), check_finite(L, 3, "y"),
+                    check_finite(L, 4, "z")));
+  return 1;
+}
+
+int quat_identity(lua_State* L) {
+  check_no_extra_args(L, 0);
+  push_quat(L, Quat::Identity());
+  return 1;
+}
+
+int quat_axis_angle_new(lua_State* L) {
+  const Vec3& axis = check_vec3(L, 1);
+  const double angle = check_finite(L, 2, "angle");
+  check_no_extra_args(L, 2);
+  if (!(axis.norm() > 0.0)) arg_error(L, 1, "axis must be non-zero");
+  push_quat(L, quat_from_axis_angle(axis, angle));
+  return 1;
+}
+
+// quat.from_mat3(R): R must be a rotation matrix (orthonormal, det +1).
+int quat_from_mat3(lua_State* L) {
+  const Mat3& r = check_mat3(L, 1);
+  check_no_extra_args(L, 1);
+  const double orthonormality = (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (orthonormality > 1e-9)
+    arg_error(L, 1, "matrix is not orthonormal (largest |RᵀR - E| entry = %s)",
+              format_number(orthonormality).c_str());
+  if (r.determinant() < 0.0) arg_error(L, 1, "matrix is a reflection (det = -1), not a rotation");
+  Quat q(r);
+  if (q.w() < 0.0) q.coeffs() *= -1.0;
+  push_quat(L, q.normalized());
+  return 1;
+}
+
+int component_index(lua_State* L, int key_index) {
+  size_t length = 0;
+  if (lua_type(L, key_index) != LUA_TSTRING) return -1;
+  const char* key = lua_tolstring(L, key_index, &length);
+  if (length != 1) return -1;
+  switch (key[0]) {
+    case 'w': return 0;
+    case 'x': return 1;
+    case 'y': return 2;
+    case 'z': return 3;
+    default: return -1;
+  }
+}
+
+double& component(Quat& q, int i) { return i == 0 ? q.w() : q.vec()[i - 1]; }
+
+int quat_index(lua_State* L) {
+  Quat& q = check_quat(L, 1);
+  const int i = component_index(L, 2);
+  if (i >= 0) {
+    lua_pushnumber(L, component(q, i));
+    return 1;
+  }
+  lua_pushvalue(L, 2);
+  if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  luaL_error(L, "quat has no field '%s' (fields: w, x, y, z; methods: see help(\"quat\"))",
+             luaL_tolstring(L, 2, nullptr));
+  return 0;
+}
+
+int quat_newindex(lua_State* L) {
+  Quat& q = check_quat(L, 1);
+  const int i = component_index(L, 2);
+  if (i < 0)
+    luaL_error(L, "quat has no field '%s' to set (fields: w, x, y, z)", luaL_tolstring(L, 2, nullptr));
+  component(q, i) = check_finite(L, 3, lua_tostring(L, 2));
+  return 0;
+}
+
+void check_two_quat(lua_State* L, const Quat*& a, const Quat*& b) {
+  a = test_quat(L, 1);
+  b = test_quat(L, 2);
+  if (a == nullptr) type_error(L, 1, "quat");
+  if (b == nullptr) type_error(L, 2, "quat");
+}
+
+int quat_add(lua_State* L) {
+  const Quat *a, *b;
+  check_two_quat(L, a, b);
+  push_finite_quat(L, Quat(a->coeffs() + b->coeffs()));
+  return 1;
+}
+
+int quat_sub(lua_State* L) {
+  const Quat *a, *b;
+  check_two_quat(L, a, b);
+  push_finite_quat(L, Quat(a->coeffs() - b->coeffs()));
+  return 1;
+}
+
+int quat_unm(lua_State* L) {
+  push_quat(L, Quat(-check_quat(L, 1).coeffs()));
+  return 1;
+}
+
+// q * r (Hamilton product), q * s, s * q.
+int quat_mul(lua_State* L) {
+  const Quat* a = test_quat(L, 1);
+  const Quat* b = test_quat(L, 2);
+  if (a != nullptr && b != nullptr) {
+    push_finite_quat(L, *a * *b);
+  } else if (a != nullptr) {
+    if (test_vec3(L, 2) != nullptr)
+      arg_error(L, 2, "quat * vec3 is not defined: use q:rotate(v)");
+    if (lua_type(L, 2) != LUA_TNUMBER) type_error(L, 2, "quat or number");
+    push_finite_quat(L, Quat(a->coeffs() * lua_tonumber(L, 2)));
+  } else {
+    if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "quat or number");
+    push_finite_quat(L, Quat(check_quat(L, 2).coeffs() * lua_tonumber(L, 1)));
+  }
+  return 1;
+}
+
+int quat_div(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  const double s = check_finite(L, 2, "divisor");
+  if (s == 0.0) arg_error(L, 2, "division of a quat by zero");
+  push_finite_quat(L, Quat(q.coeffs() / s));
+  return 1;
+}
+
+int quat_eq(lua_State* L) {
+  const Quat* a = test_quat(L, 1);
+  const Quat* b = test_quat(L, 2);
+  lua_pushboolean(L, a != nullptr && b != nullptr && a->coeffs() == b->coeffs());
+  return 1;
+}
+
+int quat_tostring(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  lua_pushfstring(L, "quat(%s, %s, %s, %s)", format_number(q.w()).c_str(),
+                  format_number(q.x()).c_str(), format_number(q.y()).c_str(),
+                  format_number(q.z()).c_str());
+  return 1;
+}
+
+int quat_concat(lua_State* L) {
+  luaL_tolstring(L, 1, nullptr);
+  luaL_tolstring(L, 2, nullptr);
+  lua_concat(L, 2);
+  return 1;
+}
+
+int quat_rotate(lua_State* L) {
+  const Quat q = check_rotation(L, 1);
+  const Vec3& v = check_vec3(L, 2);
+  check_no_extra_args(L, 2);
+  push_vec3(L, q * v);
+  return 1;
+}
+
+int quat_conj(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  check_no_extra_args(L, 1);
+  push_quat(L, q.conjugate());
+  return 1;
+}
+
+int quat_inverse(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  check_no_extra_args(L, 1);
+  if (!(q.squaredNorm() > 0.0)) arg_error(L, 1, "the zero quaternion has no inverse");
+  push_finite_quat(L, Quat(q.conjugate().coeffs() / q.squaredNorm()));
+  return 1;
+}
+
+int quat_norm(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, q.norm());
+  return 1;
+}
+
+int quat_normalized(lua_State* L) {
+  const Quat q = check_rotation(L, 1);
+  check_no_extra_args(L, 1);
+  push_quat(L, q);
+  return 1;
+}
+
+int quat_to_mat3(lua_State* L) {
+  const Quat q = check_rotation(L, 1);
+  check_no_extra_args(L, 1);
+  push_mat3(L, q.toRotationMatrix());
+  return 1;
+}
+
+int quat_axis_angle(lua_State* L) {
+  const Quat q = check_rotation(L, 1);
+  check_no_extra_args(L, 1);
+  Vec3 axis;
+  double angle;
+  quat_to_axis_angle(q, axis, angle);
+  push_vec3(L, axis);
+  lua_pushnumber(L, angle);
+  return 2;
+}
+
+int quat_dot(lua_State* L) {
+  const Quat& a = check_quat(L, 1);
+  const Quat& b = check_quat(L, 2);
+  check_no_extra_args(L, 2);
+  lua_pushnumber(L, a.coeffs().dot(b.coeffs()));
+  return 1;
+}
+
+int quat_unpack(lua_State* L) {
+  const Quat& q = check_quat(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, q.w());
+  lua_pushnumber(L, q.x());
+  lua_pushnumber(L, q.y());
+  lua_pushnumber(L, q.z());
+  return 4;
+}
+
+const Entry methods[] = {
+    {"rotate", quat_rotate, "quat:rotate", "q:rotate(v) -> vec3",
+     "v rotated by q (q normalised first): q v q*."},
+    {"conj", quat_conj, "quat:conj", "q:conj() -> quat", "Conjugate (w, -x, -y, -z)."},
+    {"inverse", quat_inverse, "quat:inverse", "q:inverse() -> quat", "q⁻¹ = q* / |q|²."},
+    {"norm", quat_norm, "quat:norm", "q:norm() -> number", "√(w² + x² + y² + z²)."},
+    {"normalized", quat_normalized, "quat:normalized", "q:normalized() -> quat",
+     "q / |q|. Error for the zero quaternion."},
+    {"to_mat3", quat_to_mat3, "quat:to_mat3", "q:to_mat3() -> mat3",
+     "The rotation matrix R of q (normalised first): R * v == q:rotate(v)."},
+    {"axis_angle", quat_axis_angle, "quat:axis_angle", "q:axis_angle() -> axis, angle",
+     "Unit axis and angle in [0, π] of the rotation (axis +x for the identity)."},
+    {"dot", quat_dot, "quat:dot", "q:dot(r) -> number", "4-vector dot product."},
+    {"unpack", quat_unpack, "quat:unpack", "q:unpack() -> w, x, y, z", "The four components."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry functions[] = {
+    {"identity", quat_identity, "quat.identity", "quat.identity() -> quat", "quat(1, 0, 0, 0)."},
+    {"axis_angle", quat_axis_angle_new, "quat.axis_angle", "quat.axis_angle(axis, angle) -> quat",
+     "Rotation by angle (radians) about axis (any non-zero length), right-hand rule."},
+    {"from_mat3", quat_from_mat3, "quat.from_mat3", "quat.from_mat3(R) -> quat",
+     "The unit quaternion (w >= 0) of a rotation matrix R (orthonormal, det +1)."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry metamethods[] = {
+    {"__add", quat_add, "quat.__add", "q + r", "4-vector sum (for integrating dq/dt)."},
+    {"__sub", quat_sub, "quat.__sub", "q - r", "4-vector difference."},
+    {"__unm", quat_unm, "quat.__unm", "-q", "Negation (the same rotation)."},
+    {"__mul", quat_mul, "quat.__mul", "q * r, q * s, s * q", "Hamilton product; scaling."},
+    {"__div", quat_div, "quat.__div", "q / s", "Division by a non-zero number."},
+    {"__eq", quat_eq, "quat.__eq", "q == r", "Exact equality of all components."},
+    {"__tostring", quat_tostring, "quat.__tostring", "tostring(q)", "quat(w, x, y, z)."},
+    {"__concat", quat_concat, "quat.__concat", "s .. q", "Concatenation as tostring."},
+    {"__newindex", quat_newindex, "quat.__newindex", "q.w = n", "Sets a component."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry index_entry[] = {
+    {"__index", quat_index, "quat.__index", "q.w, q:method()", "Fields and methods."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry constructor[] = {
+    {"__call", quat_call, "quat", "quat(w, x, y, z) -> quat",
+     "A quaternion w + xi + yj + zk; quat() is the identity. Fields .w .x .y .z (read/write).\n"
+     "Functions: quat.identity(), quat.axis_angle(axis, angle), quat.from_mat3(R).\n"
+     "Operators: q * r (Hamilton product), q + r, q - r, -q, q * s, s * q, q / s, q == r.\n"
+     "Methods: rotate, conj, inverse, norm, normalized, to_mat3, axis_angle, dot, unpack.\n"
+     "Rotations use q normalised; the zero quaternion is refused where a rotation is needed."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+}  // namespace
+
+void open_quat(lua_State* L, int lib) {
+  new_metatable(L, "quat", &quat_metatable_key);
+  register_entries(L, -1, metamethods);
+  lua_newtable(L);  // methods, the upvalue of __index
+  register_entries(L, -1, methods);
+  register_entries(L, -2, index_entry, 1);
+  lua_pop(L, 1);
+
+  lua_newtable(L);  // the callable `quat` table
+  register_entries(L, -1, methods);  // quat.rotate(q, v) works as q:rotate(v)
+  register_entries(L, -1, functions);  // after methods: quat.axis_angle(axis, angle) constructs
+  lua_newtable(L);
+  register_entries(L, -1, constructor);
+  lua_pushliteral(L, "quat");
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  register_topic(L, -1, "quat", constructor[0].doc);
+  lua_setfield(L, lib, "quat");
+}
+
+}  // namespace rigidlab::lua

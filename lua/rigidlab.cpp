@@ -10,6 +10,8 @@ int open_library(lua_State* L) {
   lua_newtable(L);
   const int lib = lua_gettop(L);
   open_vec3(L, lib);
+  open_mat3(L, lib);
+  open_quat(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;
