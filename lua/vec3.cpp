@@ -96,6 +96,9 @@ int vec3_mul(lua_State* L) {
   const Vec3* b = test_vec3(L, 2);
   if (a != nullptr && b != nullptr)
     arg_error(L, 2, "vec3 * vec3 is not defined: use a:dot(b), a:cross(b) or a:outer(b)");
+  if (a != nullptr && test_mat3(L, 2) != nullptr)
+    arg_error(L, 2, "vec3 * mat3 is not defined (vectors are columns): use M * v or "
+                    "M:transpose() * v");
   const int vector_arg = a != nullptr ? 1 : 2;
   const int scalar_arg = 3 - vector_arg;
   if (lua_type(L, scalar_arg) != LUA_TNUMBER)

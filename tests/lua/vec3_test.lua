@@ -1,0 +1,107 @@
+-- vec3 from Lua: construction, fields, operators, methods, and the errors a learner meets.
+local T = dofile("testing.lua")
+
+T.case("construction and fields", function()
+  local v = vec3(1, 2, 3)
+  T.equal(v.x, 1, "x"); T.equal(v.y, 2, "y"); T.equal(v.z, 3, "z")
+  T.equal(vec3(), vec3(0, 0, 0), "missing components are 0")
+  T.equal(vec3(5), vec3(5, 0, 0), "vec3(5)")
+  v.y = -7
+  T.equal(v, vec3(1, -7, 3), "write y")
+  T.equal(require("rigidlab").vec3, vec3, "require gives the same vec3")
+end)
+
+T.case("tostring is short and stable", function()
+  T.equal(tostring(vec3(1, 2, 3)), "(1, 2, 3)", "integers")
+  T.equal(tostring(vec3(0.5, -0.25, 1e20)), "(0.5, -0.25, 1e+20)", "fractions")
+  T.equal("v = " .. vec3(1, 0, 0), "v = (1, 0, 0)", "concat")
+end)
+
+T.case("operators", function()
+  local a, b = vec3(1, 2, 3), vec3(4, 5, 6)
+  T.equal(a + b, vec3(5, 7, 9), "+")
+  T.equal(a - b, vec3(-3, -3, -3), "-")
+  T.equal(-a, vec3(-1, -2, -3), "unary -")
+  T.equal(a * 2, vec3(2, 4, 6), "v * s")
+  T.equal(2 * a, vec3(2, 4, 6), "s * v")
+  T.equal(b / 2, vec3(2, 2.5, 3), "/")
+  T.equal(a == vec3(1, 2, 3), true, "== equal")
+  T.equal(a == b, false, "== different")
+  T.equal(a == 5, false, "== other type")
+  local c = a + b
+  c.x = 100
+  T.equal(a.x, 1, "operators return new values")
+end)
+
+T.case("products against their defining identities", function()
+  local rnd = T.random(1)
+  for _ = 1, 200 do
+    local a = vec3(rnd(-5, 5), rnd(-5, 5), rnd(-5, 5))
+    local b = vec3(rnd(-5, 5), rnd(-5, 5), rnd(-5, 5))
+    local c = a:cross(b)
+    T.near(c:dot(a), 0, 1e-12, "a×b ⟂ a")
+    T.near(c:dot(b), 0, 1e-12, "a×b ⟂ b")
+    -- Lagrange's identity |a×b|² = |a|²|b|² − (a·b)²
+    T.near(c:norm()^2, a:norm()^2 * b:norm()^2 - a:dot(b)^2, 1e-9, "Lagrange")
+    T.near(a:skew() * b, c, 1e-12, "hat operator")
+    T.near(a:outer(b) * b, a * b:dot(b), 1e-10, "outer product (a bᵀ) b = a (b·b)")
+    T.near(a:normalized():norm(), 1, 1e-15, "normalized")
+  end
+  T.equal(vec3(1, 0, 0):cross(vec3(0, 1, 0)), vec3(0, 0, 1), "right-handed")
+  T.equal(vec3(3, 4, 0):norm(), 5, "3-4-5")
+  T.equal(vec3.dot(vec3(1, 2, 3), vec3(1, 1, 1)), 6, "vec3.dot as a function")
+  T.equal(select("#", vec3(1, 2, 3):unpack()), 3, "unpack count")
+end)
+
+T.case("metatable is protected", function()
+  T.equal(getmetatable(vec3()), "vec3", "getmetatable")
+  T.fails(function() setmetatable(vec3(), {}) end, "table expected, got vec3", "setmetatable")
+  T.equal(getmetatable(vec3), "vec3", "the vec3 table too")
+end)
+
+T.case("errors name the function and the argument", function()
+  T.fails(function() return vec3(1, 2, 3):cross(5) end,
+    "bad argument #1 to 'vec3:cross' (vec3 expected, got number)", "cross(5)")
+  T.fails(function() return vec3(1, 2, 3):dot() end,
+    "bad argument #1 to 'vec3:dot' (vec3 expected, got no value)", "dot()")
+  T.fails(function() return vec3("1") end,
+    "bad argument #1 to 'vec3' (number expected, got string)", "string component")
+  T.fails(function() return vec3(0/0) end,
+    "bad argument #1 to 'vec3' (x must be finite, got nan)", "NaN component")
+  T.fails(function() return vec3(1, math.huge) end,
+    "bad argument #2 to 'vec3' (y must be finite, got inf)", "Inf component")
+  T.fails(function() return vec3(1, 2, 3, 4) end,
+    "bad argument #4 to 'vec3' (no more than 3 arguments expected, got 4)", "extra argument")
+  T.fails(function() return vec3(1, 2, 3) + 5 end,
+    "bad argument #2 to 'vec3.__add' (vec3 expected, got number)", "v + 5")
+  T.fails(function() return 5 - vec3(1, 2, 3) end,
+    "bad argument #1 to 'vec3.__sub' (vec3 expected, got number)", "5 - v")
+  T.fails(function() return vec3(1, 2, 3) * vec3(1, 2, 3) end,
+    "vec3 * vec3 is not defined: use a:dot(b), a:cross(b) or a:outer(b)", "v * v")
+  T.fails(function() return vec3(1, 2, 3) * "2" end,
+    "bad argument #2 to 'vec3.__mul' (number (vec3 * number) expected, got string)", "v * '2'")
+  T.fails(function() return vec3(1, 2, 3) / 0 end,
+    "bad argument #2 to 'vec3.__div' (division of a vec3 by zero)", "v / 0")
+  T.fails(function() return vec3():normalized() end,
+    "calling 'vec3:normalized' on bad self (cannot normalize the zero vector)", "normalize 0")
+  T.fails(function() return vec3(1e300, 0, 0) * 1e300 end,
+    "'vec3.__mul': result is not finite", "overflow")
+  T.fails(function() return vec3().w end, "vec3 has no field 'w'", "unknown field")
+  T.fails(function() local v = vec3(); v.w = 1 end, "vec3 has no field 'w' to set", "set unknown")
+  T.fails(function() local v = vec3(); v.x = 0/0 end,
+    "bad argument #3 to 'vec3.__newindex' (x must be finite, got nan)", "set NaN")
+  T.fails(function() local v = vec3(); v.x = "a" end,
+    "bad argument #3 to 'vec3.__newindex' (number expected, got string)", "set string")
+  T.fails(function() return vec3.cross(5, vec3()) end,
+    "bad argument #1 to 'vec3:cross' (vec3 expected, got number)", "wrong self as function")
+  T.fails(function() return vec3(1, 2, 3):cross(mat3.identity()) end,
+    "bad argument #1 to 'vec3:cross' (vec3 expected, got mat3)", "mat3 where vec3 expected")
+end)
+
+T.case("a failed write leaves the value unchanged", function()
+  local v = vec3(1, 2, 3)
+  pcall(function() v.x = 0/0 end)
+  T.equal(v, vec3(1, 2, 3), "unchanged")
+end)
+
+T.finish()
