@@ -12,6 +12,7 @@ int open_library(lua_State* L) {
   open_vec3(L, lib);
   open_mat3(L, lib);
   open_quat(L, lib);
+  open_help(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;

@@ -1,0 +1,131 @@
+// help(): the documentation of any rigidlab function, type or module, given the value itself
+// (help(inertia.solid_box), help(vec3(1, 2, 3))) or its dotted name (help("world"),
+// help("vec3:cross")); help() lists the topics. The texts are the `signature` and `doc` of
+// each binding's Entry table, so the help shown is the help written beside the code.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "lua/binding.hpp"
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+void print_text(lua_State* L, const std::string& text) {
+  lua_getglobal(L, "print");
+  lua_pushlstring(L, text.data(), text.size());
+  lua_call(L, 1, 0);
+}
+
+std::string describe(const Entry& e) {
+  std::string text = e.signature;
+  if (e.doc != nullptr && *e.doc != '\0') {
+    std::string doc = e.doc;
+    std::string indented = "  ";
+    for (char c : doc) {
+      indented += c;
+      if (c == '\n') indented += "  ";
+    }
+    text += "\n" + indented;
+  }
+  return text;
+}
+
+// One line per documented function in the table at `index`, sorted by name.
+std::string list_functions(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  std::vector<std::string> lines;
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING) {
+      if (const Entry* e = find_entry(L, -1)) {
+        if (e->function != nullptr) lines.push_back(std::string("  ") + e->signature);
+      }
+    }
+    lua_pop(L, 1);
+  }
+  std::sort(lines.begin(), lines.end());
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  return text;
+}
+
+// Pushes the value a dotted name ("inertia.solid_box", "vec3:cross") refers to, or nil.
+void resolve_name(lua_State* L, const std::string& name) {
+  lua_pushglobaltable(L);
+  size_t start = 0;
+  while (start <= name.size()) {
+    const size_t end = name.find_first_of(".:", start);
+    const std::string part = name.substr(start, end == std::string::npos ? end : end - start);
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      lua_pop(L, 1);
+      lua_pushnil(L);
+      return;
+    }
+    lua_getfield(L, -1, part.c_str());
+    lua_remove(L, -2);
+    if (end == std::string::npos) return;
+    start = end + 1;
+  }
+}
+
+const char* const overview =
+    "rigidlab: rigid-body dynamics in Lua. help(x) documents a function, type or module,\n"
+    "given the value or its name: help(vec3), help(\"inertia.solid_box\"), help(vec3.cross).\n"
+    "Topics:";
+
+int help(lua_State* L) {
+  check_no_extra_args(L, 1);
+  if (lua_isnoneornil(L, 1)) {
+    std::string text = overview;
+    lua_getglobal(L, "require");
+    lua_pushliteral(L, "rigidlab");
+    lua_call(L, 1, 1);
+    std::vector<std::string> topics;
+    lua_pushnil(L);
+    while (lua_next(L, -2) != 0) {
+      if (lua_type(L, -2) == LUA_TSTRING && find_entry(L, -1) != nullptr)
+        topics.push_back(lua_tostring(L, -2));
+      lua_pop(L, 1);
+    }
+    std::sort(topics.begin(), topics.end());
+    for (const std::string& t : topics) text += " " + t;
+    print_text(L, text);
+    return 0;
+  }
+  if (lua_type(L, 1) == LUA_TSTRING) {
+    const std::string name = lua_tostring(L, 1);
+    resolve_name(L, name);
+    if (lua_isnil(L, -1))
+      arg_error(L, 1, "no topic '%s' (help() lists the topics)", name.c_str());
+    lua_replace(L, 1);
+  }
+  if (lua_type(L, 1) == LUA_TUSERDATA && luaL_getmetafield(L, 1, "__name") == LUA_TSTRING) {
+    resolve_name(L, lua_tostring(L, -1));  // a value: the help of its type
+    lua_replace(L, 1);
+  }
+  const Entry* entry = find_entry(L, 1);
+  std::string text;
+  if (entry != nullptr) text = describe(*entry);
+  if (lua_type(L, 1) == LUA_TTABLE) {
+    const std::string functions = list_functions(L, 1);
+    if (!functions.empty()) text += (text.empty() ? "" : "\n") + functions;
+    if (!text.empty() && text.back() == '\n') text.pop_back();
+  }
+  if (text.empty()) arg_error(L, 1, "no help for this %s value", luaL_typename(L, 1));
+  print_text(L, text);
+  return 0;
+}
+
+const Entry functions[] = {
+    {"help", help, "help", "help([x])",
+     "Prints the documentation of x: a function, type or module, or its name as a string.\n"
+     "help() lists the topics."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+}  // namespace
+
+void open_help(lua_State* L, int lib) { register_entries(L, lib, functions); }
+
+}  // namespace rigidlab::lua
