@@ -48,11 +48,6 @@ void quat_to_axis_angle(const Quat& q_in, Vec3& axis, double& angle) {
   axis = s > 0.0 ? Vec3(q.vec() / s) : Vec3::UnitX();
 }
 
-bool is_finite(double x) { return std::isfinite(x); }
-bool is_finite(const Vec3& v) { return v.allFinite(); }
-bool is_finite(const Mat3& m) { return m.allFinite(); }
-bool is_finite(const Quat& q) { return q.coeffs().allFinite(); }
-
 double asymmetry(const Mat3& m) { return (m - m.transpose()).cwiseAbs().maxCoeff(); }
 
 }  // namespace rigidlab

@@ -36,10 +36,12 @@ Quat quat_from_axis_angle(const Vec3& axis, double angle);
 // identity the axis is +x and the angle 0.
 void quat_to_axis_angle(const Quat& q, Vec3& axis, double& angle);
 
-bool is_finite(double x);
-bool is_finite(const Vec3& v);
-bool is_finite(const Mat3& m);
-bool is_finite(const Quat& q);
+// Inline: the bindings call these on every arithmetic result. x - x is 0 for finite x and NaN
+// otherwise, so one comparison tests a whole vector without branches.
+inline bool is_finite(double x) { return x - x == 0.0; }
+inline bool is_finite(const Vec3& v) { return (v - v).squaredNorm() == 0.0; }
+inline bool is_finite(const Mat3& m) { return (m - m).squaredNorm() == 0.0; }
+inline bool is_finite(const Quat& q) { return (q.coeffs() - q.coeffs()).squaredNorm() == 0.0; }
 
 // Largest |a_ij - a_ji| over the off-diagonal pairs: 0 for an exactly symmetric matrix.
 double asymmetry(const Mat3& m);

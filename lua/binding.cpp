@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -164,26 +165,6 @@ bool has_metatable(lua_State* L, int index, const void* key) {
   return same;
 }
 
-namespace {
-template <class T>
-T* test_userdata(lua_State* L, int index, const void* key) {
-  return has_metatable(L, index, key) ? static_cast<T*>(lua_touserdata(L, index)) : nullptr;
-}
-
-template <class T>
-T& push_userdata(lua_State* L, const T& value, const void* key) {
-  void* memory = lua_newuserdatauv(L, sizeof(T), 0);
-  T* object = new (memory) T(value);
-  lua_rawgetp(L, LUA_REGISTRYINDEX, key);
-  lua_setmetatable(L, -2);
-  return *object;
-}
-}  // namespace
-
-Vec3* test_vec3(lua_State* L, int index) { return test_userdata<Vec3>(L, index, &vec3_metatable_key); }
-Mat3* test_mat3(lua_State* L, int index) { return test_userdata<Mat3>(L, index, &mat3_metatable_key); }
-Quat* test_quat(lua_State* L, int index) { return test_userdata<Quat>(L, index, &quat_metatable_key); }
-
 Vec3& check_vec3(lua_State* L, int arg) {
   Vec3* v = test_vec3(L, arg);
   if (v == nullptr) type_error(L, arg, "vec3");
@@ -199,10 +180,6 @@ Quat& check_quat(lua_State* L, int arg) {
   if (q == nullptr) type_error(L, arg, "quat");
   return *q;
 }
-
-Vec3& push_vec3(lua_State* L, const Vec3& v) { return push_userdata(L, v, &vec3_metatable_key); }
-Mat3& push_mat3(lua_State* L, const Mat3& m) { return push_userdata(L, m, &mat3_metatable_key); }
-Quat& push_quat(lua_State* L, const Quat& q) { return push_userdata(L, q, &quat_metatable_key); }
 
 int get_field(lua_State* L, int arg, const char* name) { return lua_getfield(L, arg, name); }
 

@@ -10,6 +10,8 @@
 
 #include <lua.hpp>
 
+#include <cstdint>
+#include <new>
 #include <string>
 
 #include "engine/math.hpp"
@@ -53,22 +55,58 @@ double check_positive(lua_State* L, int arg, const char* what);      // finite a
 double check_nonnegative(lua_State* L, int arg, const char* what);   // finite and >= 0
 double opt_finite(lua_State* L, int arg, const char* what, double fallback);
 
-// Math userdata. `test_*` returns nullptr when the value is not of that type; `check_*`
-// raises "vec3 expected, got number". `push_*` creates a new value.
-Vec3* test_vec3(lua_State* L, int index);
-Vec3& check_vec3(lua_State* L, int arg);
-Vec3& push_vec3(lua_State* L, const Vec3& v);
-Mat3* test_mat3(lua_State* L, int index);
-Mat3& check_mat3(lua_State* L, int arg);
-Mat3& push_mat3(lua_State* L, const Mat3& m);
-Quat* test_quat(lua_State* L, int index);
-Quat& check_quat(lua_State* L, int arg);
-Quat& push_quat(lua_State* L, const Quat& q);
-
 // Registry keys of the metatables (their addresses are the keys; see lua_rawgetp).
 extern const char vec3_metatable_key;
 extern const char mat3_metatable_key;
 extern const char quat_metatable_key;
+
+// The math values are the hottest userdata: `a + b` checks two and creates one. Instead of
+// comparing metatables (five API calls per argument) each value starts with a type tag, and
+// the size must match too, so no other userdata (io's files, light userdata) can pass. Only C
+// code creates userdata, so a script cannot forge a tag. Inline for the same reason.
+template <class T>
+struct Tagged {
+  std::uint64_t tag;
+  T value;
+};
+inline constexpr std::uint64_t vec3_tag = 0x7633'7269'6769'646cULL;  // arbitrary, distinct
+inline constexpr std::uint64_t mat3_tag = 0x6d33'7269'6769'646cULL;
+inline constexpr std::uint64_t quat_tag = 0x7174'7269'6769'646cULL;
+
+template <class T>
+T* test_tagged(lua_State* L, int index, std::uint64_t tag) {
+  auto* box = static_cast<Tagged<T>*>(lua_touserdata(L, index));
+  if (box == nullptr || lua_rawlen(L, index) != sizeof(Tagged<T>) || box->tag != tag)
+    return nullptr;
+  return &box->value;
+}
+
+template <class T>
+T& push_tagged(lua_State* L, const T& value, std::uint64_t tag, const void* metatable_key) {
+  void* memory = lua_newuserdatauv(L, sizeof(Tagged<T>), 0);
+  auto* box = new (memory) Tagged<T>{tag, value};
+  lua_rawgetp(L, LUA_REGISTRYINDEX, metatable_key);
+  lua_setmetatable(L, -2);
+  return box->value;
+}
+
+// Math userdata. `test_*` returns nullptr when the value is not of that type; `check_*`
+// raises "vec3 expected, got number". `push_*` creates a new value.
+inline Vec3* test_vec3(lua_State* L, int index) { return test_tagged<Vec3>(L, index, vec3_tag); }
+inline Mat3* test_mat3(lua_State* L, int index) { return test_tagged<Mat3>(L, index, mat3_tag); }
+inline Quat* test_quat(lua_State* L, int index) { return test_tagged<Quat>(L, index, quat_tag); }
+Vec3& check_vec3(lua_State* L, int arg);
+Mat3& check_mat3(lua_State* L, int arg);
+Quat& check_quat(lua_State* L, int arg);
+inline Vec3& push_vec3(lua_State* L, const Vec3& v) {
+  return push_tagged(L, v, vec3_tag, &vec3_metatable_key);
+}
+inline Mat3& push_mat3(lua_State* L, const Mat3& m) {
+  return push_tagged(L, m, mat3_tag, &mat3_metatable_key);
+}
+inline Quat& push_quat(lua_State* L, const Quat& q) {
+  return push_tagged(L, q, quat_tag, &quat_metatable_key);
+}
 
 // Creates a protected metatable for a userdata type and stores it in the registry under
 // `key`: `__name` is `type_name`, `__metatable` hides it from getmetatable/setmetatable.
