@@ -11,5 +11,6 @@ void open_vec3(lua_State* L, int lib);
 void open_mat3(lua_State* L, int lib);
 void open_quat(lua_State* L, int lib);
 void open_help(lua_State* L, int lib);
+void open_lesson(lua_State* L, int lib);
 
 }  // namespace rigidlab::lua

@@ -13,6 +13,7 @@ int open_library(lua_State* L) {
   open_mat3(L, lib);
   open_quat(L, lib);
   open_help(L, lib);
+  open_lesson(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;
