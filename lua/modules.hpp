@@ -12,5 +12,7 @@ void open_mat3(lua_State* L, int lib);
 void open_quat(lua_State* L, int lib);
 void open_help(lua_State* L, int lib);
 void open_lesson(lua_State* L, int lib);
+void open_plot(lua_State* L, int lib);
+void open_csv(lua_State* L, int lib);
 
 }  // namespace rigidlab::lua

@@ -14,6 +14,8 @@ int open_library(lua_State* L) {
   open_quat(L, lib);
   open_help(L, lib);
   open_lesson(L, lib);
+  open_plot(L, lib);
+  open_csv(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;

@@ -1,0 +1,79 @@
+// csv.write(path, columns, order): a header line and one row per index, numbers written with
+// 17 significant digits so they read back exactly.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "lua/binding.hpp"
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+int csv_write(lua_State* L) {
+  const char* path = luaL_checkstring(L, 1);
+  luaL_checktype(L, 2, LUA_TTABLE);
+  luaL_checktype(L, 3, LUA_TTABLE);
+  check_no_extra_args(L, 3);
+  const int count = static_cast<int>(luaL_len(L, 3));
+  if (count == 0) arg_error(L, 3, "order must list at least one column name");
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;
+  for (int c = 1; c <= count; ++c) {
+    if (lua_geti(L, 3, c) != LUA_TSTRING)
+      arg_error(L, 3, "order[%d] must be a column name (string), got %s", c, luaL_typename(L, -1));
+    names.push_back(lua_tostring(L, -1));
+    if (names.back().find_first_of(",\"\n") != std::string::npos)
+      arg_error(L, 3, "column name '%s' may not contain a comma, quote or newline",
+                names.back().c_str());
+    if (lua_getfield(L, 2, names.back().c_str()) != LUA_TTABLE)
+      arg_error(L, 2, "column '%s' must be a list of numbers, got %s", names.back().c_str(),
+                luaL_typename(L, -1));
+    std::vector<double> values;
+    const lua_Integer n = luaL_len(L, -1);
+    for (lua_Integer i = 1; i <= n; ++i) {
+      if (lua_geti(L, -1, i) != LUA_TNUMBER)
+        arg_error(L, 2, "column '%s' entry %d must be a number, got %s", names.back().c_str(),
+                  (int)i, luaL_typename(L, -1));
+      values.push_back(lua_tonumber(L, -1));
+      lua_pop(L, 1);
+    }
+    if (!columns.empty() && values.size() != columns[0].size())
+      arg_error(L, 2, "column '%s' has %d entries but column '%s' has %d", names.back().c_str(),
+                (int)values.size(), names[0].c_str(), (int)columns[0].size());
+    columns.push_back(std::move(values));
+    lua_pop(L, 2);
+  }
+  std::FILE* file = std::fopen(path, "w");
+  if (file == nullptr) arg_error(L, 1, "cannot open '%s' for writing: %s", path, std::strerror(errno));
+  for (size_t c = 0; c < names.size(); ++c) std::fprintf(file, c ? ",%s" : "%s", names[c].c_str());
+  std::fputc('\n', file);
+  for (size_t row = 0; row < columns[0].size(); ++row) {
+    for (size_t c = 0; c < columns.size(); ++c)
+      std::fprintf(file, c ? ",%.17g" : "%.17g", columns[c][row]);
+    std::fputc('\n', file);
+  }
+  const bool ok = std::fclose(file) == 0;
+  if (!ok) function_error(L, "could not finish writing '%s'", path);
+  return 0;
+}
+
+const Entry functions[] = {
+    {"write", csv_write, "csv.write", "csv.write(path, columns, order)",
+     "Writes a CSV file: columns maps a name to a list of numbers (all the same length), order\n"
+     "lists the names in column order. A header line, then one row per index; numbers with 17\n"
+     "significant digits, so they read back exactly."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+}  // namespace
+
+void open_csv(lua_State* L, int lib) {
+  lua_newtable(L);
+  register_entries(L, -1, functions);
+  register_topic(L, -1, "csv", "CSV files: csv.write(path, columns, order).");
+  lua_setfield(L, lib, "csv");
+}
+
+}  // namespace rigidlab::lua
