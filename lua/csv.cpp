@@ -8,12 +8,14 @@
 
 #include "lua/binding.hpp"
 #include "lua/modules.hpp"
+#include "lua/sandbox.hpp"
 
 namespace rigidlab::lua {
 namespace {
 
 int csv_write(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);
+  if (is_sandboxed(L)) arg_error(L, 1, "files cannot be written in the sandbox");
   luaL_checktype(L, 2, LUA_TTABLE);
   luaL_checktype(L, 3, LUA_TTABLE);
   check_no_extra_args(L, 3);

@@ -15,6 +15,7 @@
 
 #include "lua/binding.hpp"
 #include "lua/modules.hpp"
+#include "lua/sandbox.hpp"
 
 namespace rigidlab::lua {
 namespace {
@@ -313,7 +314,10 @@ void write_svg(lua_State* L, const Chart& chart) {
 
 int plot_lines(lua_State* L) {
   const Chart chart = read_chart(L);
-  if (!chart.svg.empty()) write_svg(L, chart);
+  if (!chart.svg.empty()) {
+    if (is_sandboxed(L)) arg_error(L, 1, "svg files cannot be written in the sandbox");
+    write_svg(L, chart);
+  }
   const std::string text = text_chart(chart);
   lua_getglobal(L, "print");
   lua_pushlstring(L, text.data(), text.size());
