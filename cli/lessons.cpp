@@ -13,6 +13,7 @@
 
 #include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
+#include "lua/sandbox.hpp"
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
@@ -58,6 +59,13 @@ bool resolve_lesson(const std::string& id_or_file, fs::path& path) {
   }
   path = lesson_directory() / (id_or_file + ".lua");
   return fs::is_regular_file(path);
+}
+
+// Lessons outside the lesson directory may come from anyone: they run in the sandbox.
+bool trusted(const fs::path& path) {
+  std::error_code error;
+  return fs::weakly_canonical(path, error).parent_path() ==
+         fs::weakly_canonical(lesson_directory(), error);
 }
 
 int traceback(lua_State* L) {
@@ -206,6 +214,7 @@ int steps_count(lua_State* L, int lesson) {
 int present_lesson(const fs::path& path) {
   lua_State* L = luaL_newstate();
   rigidlab::lua::open_all(L);
+  if (!trusted(path)) rigidlab::lua::apply_sandbox(L);
   std::string error;
   if (!load_lesson(L, path, error)) {
     std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
@@ -297,12 +306,14 @@ bool check_one(const fs::path& path, const Limits& limits) {
   std::vector<std::string> failures;
   lua_pushcfunction(L, [](lua_State* L) {
     rigidlab::lua::open_all(L);
+    if (lua_toboolean(L, 1)) rigidlab::lua::apply_sandbox(L);
     // Check mode prints one line per lesson: the lesson's own printing is silenced.
     lua_pushcfunction(L, [](lua_State*) { return 0; });
     lua_setglobal(L, "print");
     return 0;
   });
-  bool ok = lua_pcall(L, 0, 0, 0) == LUA_OK;
+  lua_pushboolean(L, !trusted(path));
+  bool ok = lua_pcall(L, 1, 0, 0) == LUA_OK;
   if (!ok) error = "cannot open the libraries: out of memory";
   if (ok && (ok = load_lesson(L, path, error))) {
     id = field_string(L, -1, "id");

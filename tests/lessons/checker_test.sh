@@ -37,6 +37,8 @@ if ((elapsed > 30)); then
 fi
 expect "the rest still run after a runaway lesson" 1 "1 passed, 2 failed" -- \
   "$rigidlab" check "$here/infinite_loop.lua" "$here/good.lua" "$here/wrong.lua"
+expect "lessons outside lessons/ run in the sandbox" 0 "1 passed, 0 failed" -- \
+  "$rigidlab" check "$here/untrusted.lua"
 expect "unknown lesson is a usage error" 2 "no lesson 'no-such-lesson'" -- \
   "$rigidlab" check no-such-lesson
 expect "lesson runs straight through without a terminal" 0 "Step 2/2: A table" -- \
