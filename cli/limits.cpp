@@ -1,5 +1,7 @@
 #include "cli/limits.hpp"
 
+#include "lua/binding.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -15,8 +17,12 @@ LimitedState::LimitedState(const Limits& limits) : limits_(limits) {
   // The hook finds this object through the state's extra space (copied into coroutines).
   LimitedState* self = this;
   std::memcpy(lua_getextraspace(state_), &self, sizeof self);
-  if (limits_.max_instructions > 0 || limits_.timeout_seconds > 0.0)
+  if (limits_.max_instructions > 0 || limits_.timeout_seconds > 0.0) {
     lua_sethook(state_, &LimitedState::hook, LUA_MASKCOUNT, hook_interval);
+    rigidlab::lua::set_stop_check(
+        state_, [](lua_State* L, void* self) { static_cast<LimitedState*>(self)->enforce(L); },
+        this);
+  }
   restart();
 }
 
@@ -73,15 +79,19 @@ void LimitedState::hook(lua_State* L, lua_Debug*) {
   LimitedState* self;
   std::memcpy(&self, lua_getextraspace(L), sizeof self);
   self->instructions_ += hook_interval;
-  if (self->limits_.max_instructions > 0 && self->instructions_ > self->limits_.max_instructions) {
-    self->hit_ = Hit::instructions;
-    luaL_error(L, "stopped: %s reached", self->limit_hit().c_str());
+  self->enforce(L);
+}
+
+void LimitedState::enforce(lua_State* L) {
+  if (limits_.max_instructions > 0 && instructions_ > limits_.max_instructions) {
+    hit_ = Hit::instructions;
+    luaL_error(L, "stopped: %s reached", limit_hit().c_str());
   }
-  if (self->limits_.timeout_seconds > 0.0) {
-    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - self->start_;
-    if (elapsed.count() > self->limits_.timeout_seconds) {
-      self->hit_ = Hit::time;
-      luaL_error(L, "stopped: %s reached", self->limit_hit().c_str());
+  if (limits_.timeout_seconds > 0.0) {
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start_;
+    if (elapsed.count() > limits_.timeout_seconds) {
+      hit_ = Hit::time;
+      luaL_error(L, "stopped: %s reached", limit_hit().c_str());
     }
   }
 }

@@ -40,6 +40,9 @@ class LimitedState {
  private:
   static void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_size);
   static void hook(lua_State* L, lua_Debug* ar);
+  // Raises a Lua error when a limit has been passed; called by the hook and, through
+  // rigidlab::lua::check_stop, from long loops inside bindings.
+  void enforce(lua_State* L);
 
   Limits limits_;
   lua_State* state_ = nullptr;

@@ -256,6 +256,27 @@ Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, b
   return result;
 }
 
+namespace {
+const char stop_check_key = 0;
+struct StopCheckEntry {
+  StopCheck check;
+  void* data;
+};
+}  // namespace
+
+void set_stop_check(lua_State* L, StopCheck check, void* data) {
+  auto* entry = static_cast<StopCheckEntry*>(lua_newuserdatauv(L, sizeof(StopCheckEntry), 0));
+  *entry = StopCheckEntry{check, data};
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &stop_check_key);
+}
+
+void check_stop(lua_State* L) {
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &stop_check_key);
+  const auto* entry = static_cast<const StopCheckEntry*>(lua_touserdata(L, -1));
+  lua_pop(L, 1);
+  if (entry != nullptr && entry->check != nullptr) entry->check(L, entry->data);
+}
+
 std::string format_number(double x) {
   if (std::isnan(x)) return "nan";
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";

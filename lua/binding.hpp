@@ -126,6 +126,15 @@ double field_finite(lua_State* L, int arg, const char* name, double fallback, bo
 double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required);
 Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required);
 
+// Long-running bindings (w:step(dt, n), motion.simulate, ...) call check_stop between
+// iterations, because a Lua hook cannot interrupt a C loop. The embedding program (the CLI)
+// installs a StopCheck that raises a Lua error (luaL_error) when the user pressed Ctrl-C or a
+// time limit passed; without one, check_stop does nothing. Stop at a step boundary, so the
+// objects are consistent after the error.
+using StopCheck = void (*)(lua_State* L, void* data);
+void set_stop_check(lua_State* L, StopCheck check, void* data);
+void check_stop(lua_State* L);
+
 // Formats a number the way Lua's tostring does ("%.14g"), integers without ".0".
 std::string format_number(double x);
 
