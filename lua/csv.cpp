@@ -14,7 +14,8 @@ namespace rigidlab::lua {
 namespace {
 
 int csv_write(lua_State* L) {
-  const char* path = luaL_checkstring(L, 1);
+  if (lua_type(L, 1) != LUA_TSTRING) type_error(L, 1, "string (a file path)");
+  const char* path = lua_tostring(L, 1);
   if (is_sandboxed(L)) arg_error(L, 1, "files cannot be written in the sandbox");
   luaL_checktype(L, 2, LUA_TTABLE);
   luaL_checktype(L, 3, LUA_TTABLE);
