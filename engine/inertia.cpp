@@ -21,17 +21,18 @@ std::string number(double x, int digits = 10) {
   return buffer;
 }
 
-double require_positive(double x, const char* what) {
-  if (!std::isfinite(x)) throw std::invalid_argument(std::string(what) + " must be finite, got " + number(x));
-  if (!(x > 0.0)) throw std::invalid_argument(std::string(what) + " must be > 0, got " + number(x));
-  return x;
+// Throws "<what> must be finite, got nan" or "<what> must be > 0, got -1" (">= 0" when zero
+// is allowed).
+void require(double x, const char* what, bool zero_allowed) {
+  const char* rule = nullptr;
+  if (!std::isfinite(x))
+    rule = " must be finite, got ";
+  else if (zero_allowed ? !(x >= 0.0) : !(x > 0.0))
+    rule = zero_allowed ? " must be >= 0, got " : " must be > 0, got ";
+  if (rule != nullptr) throw std::invalid_argument(std::string(what) + rule + number(x));
 }
-
-double require_nonnegative(double x, const char* what) {
-  if (!std::isfinite(x)) throw std::invalid_argument(std::string(what) + " must be finite, got " + number(x));
-  if (!(x >= 0.0)) throw std::invalid_argument(std::string(what) + " must be >= 0, got " + number(x));
-  return x;
-}
+void require_positive(double x, const char* what) { require(x, what, false); }
+void require_nonnegative(double x, const char* what) { require(x, what, true); }
 
 Mat3 diagonal(double xx, double yy, double zz) { return Vec3(xx, yy, zz).asDiagonal(); }
 
@@ -143,7 +144,8 @@ MassProperties inertia_points(const std::vector<PointMass>& points) {
     moment += p.mass * p.position;
   }
   result.com = moment / result.mass;
-  for (const PointMass& p : points) result.inertia += inertia_point(p.mass, p.position - result.com);
+  for (const PointMass& p : points)
+    result.inertia += inertia_point(p.mass, p.position - result.com);
   return result;
 }
 
@@ -219,7 +221,8 @@ std::string inertia_tensor_problem(const Mat3& inertia, InertiaRules rules) {
 
 std::string rotation_problem(const Mat3& rotation) {
   if (!is_finite(rotation)) return "the matrix has entries that are not finite";
-  const double departure = (rotation.transpose() * rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
+  const double departure =
+      (rotation.transpose() * rotation - Mat3::Identity()).cwiseAbs().maxCoeff();
   if (departure > rotation_tolerance)
     return "the matrix is not orthonormal (RᵀR differs from the identity by up to " +
            number(departure, 3) + ")";

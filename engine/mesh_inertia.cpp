@@ -87,7 +87,8 @@ std::string edge_group_problem(const std::vector<EdgeUse>& uses, std::size_t fir
            nth(e.triangle) + " (each edge of a closed surface is shared by exactly two triangles)";
   if (last - first > 2) {
     std::string list;
-    for (std::size_t i = first; i < last; ++i) list += (i > first ? ", " : "") + nth(uses[i].triangle);
+    for (std::size_t i = first; i < last; ++i)
+      list += (i > first ? ", " : "") + nth(uses[i].triangle);
     return "the mesh is not a simple closed surface: edge " + edge + " is shared by " +
            std::to_string(last - first) + " triangles (" + list + "), not exactly two";
   }
@@ -186,7 +187,8 @@ VolumeIntegrals integrate(const std::vector<Vec3>& vertices,
 }
 
 // The mean of the triangles' vertices: inside the mesh's extent, so a good origin.
-Vec3 reference_point(const std::vector<Vec3>& vertices, const std::vector<MeshTriangle>& triangles) {
+Vec3 reference_point(const std::vector<Vec3>& vertices,
+                     const std::vector<MeshTriangle>& triangles) {
   Vec3 sum = Vec3::Zero();
   for (const MeshTriangle& tri : triangles)
     sum += vertices[tri[0]] + vertices[tri[1]] + vertices[tri[2]];
@@ -208,7 +210,7 @@ std::string volume_problem(const std::vector<Vec3>& vertices,
     return "the mesh encloses no volume (signed volume " + number(volume) +
            " m³, zero compared with its extent " + number(extent) + " m)";
   if (volume < 0.0)
-    return "the mesh is inside out (signed volume " + number(volume) +
+    return "the mesh is inside-out (signed volume " + number(volume) +
            " m³ is negative): its triangles are clockwise seen from outside; reverse the "
            "vertex order of every triangle";
   return {};

@@ -10,6 +10,7 @@ namespace rigidlab::lua {
 void open_vec3(lua_State* L, int lib);
 void open_mat3(lua_State* L, int lib);
 void open_quat(lua_State* L, int lib);
+void open_inertia(lua_State* L, int lib);
 void open_help(lua_State* L, int lib);
 void open_lesson(lua_State* L, int lib);
 void open_plot(lua_State* L, int lib);

@@ -12,6 +12,7 @@ int open_library(lua_State* L) {
   open_vec3(L, lib);
   open_mat3(L, lib);
   open_quat(L, lib);
+  open_inertia(L, lib);
   open_help(L, lib);
   open_lesson(L, lib);
   open_plot(L, lib);

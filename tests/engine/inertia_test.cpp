@@ -251,7 +251,8 @@ TEST(PointInertia, EightCornerMassesOfABox) {
                                           .cwiseProduct(half)});
   const MassProperties p = inertia_points(corners);
   EXPECT_LT((p.com - centre).norm(), 1e-14);
-  const Vec3 h2 = half.cwiseProduct(half);  // every corner is at (±a, ±b, ±c): Ixx = M(b² + c²)
+  // Every corner is at (±a, ±b, ±c) from the centre: Ixx = M(b² + c²), ...
+  const Vec3 h2 = half.cwiseProduct(half);
   const Vec3 want = 2.0 * Vec3(h2.y() + h2.z(), h2.x() + h2.z(), h2.x() + h2.y());
   EXPECT_LT((p.inertia - want.asDiagonal().toDenseMatrix()).norm(), 1e-13);
   EXPECT_THROW(inertia_points({}), std::invalid_argument);
@@ -262,7 +263,8 @@ std::vector<PointMass> random_cloud(std::mt19937& rng, int count) {
   std::uniform_real_distribution<double> position(-2, 2), mass(0.1, 3);
   std::vector<PointMass> cloud;
   for (int i = 0; i < count; ++i)
-    cloud.push_back({mass(rng), Vec3(position(rng), position(rng), position(rng)) + Vec3(5, 1, -3)});
+    cloud.push_back(
+        {mass(rng), Vec3(position(rng), position(rng), position(rng)) + Vec3(5, 1, -3)});
   return cloud;
 }
 
@@ -311,7 +313,8 @@ TEST(Rotate, RotatingParticlesRotatesTheTensor) {
     std::vector<PointMass> cloud = random_cloud(rng, 5), rotated = cloud;
     for (PointMass& p : rotated) p.position = R * p.position;
     const Mat3 want = inertia_points(rotated).inertia;
-    EXPECT_LT((rotate_inertia(inertia_points(cloud).inertia, R) - want).norm(), 1e-12 * want.norm());
+    EXPECT_LT((rotate_inertia(inertia_points(cloud).inertia, R) - want).norm(),
+              1e-12 * want.norm());
     EXPECT_LT((rotate_inertia(inertia_points(cloud).inertia, Quat(2.0 * q.coeffs())) - want).norm(),
               1e-12 * want.norm())
         << "a quaternion is normalised first";

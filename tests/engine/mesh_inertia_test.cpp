@@ -69,8 +69,11 @@ Mesh revolve(const std::vector<Eigen::Vector2d>& profile, int segments) {
     const bool bottom_pole = profile[k].x() == 0.0, top_pole = profile[k + 1].x() == 0.0;
     for (int j = 0; j < segments; ++j) {
       const int jn = (j + 1) % segments;
-      const int a = ring_start[k] + (bottom_pole ? 0 : j), b = ring_start[k] + (bottom_pole ? 0 : jn);
-      const int c = ring_start[k + 1] + (top_pole ? 0 : jn), d = ring_start[k + 1] + (top_pole ? 0 : j);
+      // a, b on ring k; c, d above them on ring k + 1 (a pole is one vertex for all j).
+      const int a = ring_start[k] + (bottom_pole ? 0 : j);
+      const int b = ring_start[k] + (bottom_pole ? 0 : jn);
+      const int c = ring_start[k + 1] + (top_pole ? 0 : jn);
+      const int d = ring_start[k + 1] + (top_pole ? 0 : j);
       if (!bottom_pole) mesh.triangles.push_back({a, b, c});
       if (!top_pole) mesh.triangles.push_back({a, c, d});
     }
@@ -106,7 +109,9 @@ Mesh capsule_mesh(double r, double h, int segments) {
   return revolve(profile, segments);
 }
 
-double relative_error(const Mat3& got, const Mat3& want) { return (got - want).norm() / want.norm(); }
+double relative_error(const Mat3& got, const Mat3& want) {
+  return (got - want).norm() / want.norm();
+}
 
 // ---- exact cases ---------------------------------------------------------------------------
 
@@ -356,7 +361,7 @@ TEST(MeshRefusal, InsideOut) {
   Mesh m = box_mesh(Vec3(1, 2, 3));
   for (MeshTriangle& t : m.triangles) std::swap(t[1], t[2]);
   EXPECT_EQ(refusal(m),
-            "the mesh is inside out (signed volume -6 m³ is negative): its triangles are "
+            "the mesh is inside-out (signed volume -6 m³ is negative): its triangles are "
             "clockwise seen from outside; reverse the vertex order of every triangle");
 }
 
