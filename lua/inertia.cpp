@@ -143,7 +143,7 @@ void push_entry_table(lua_State* L, int arg, int entry, const char* const* allow
   }
 }
 
-// Field `name` of the entry table on top of the stack.
+// Field 'mass' of the entry table on top of the stack: a finite number > 0.
 double entry_mass(lua_State* L, int arg, int entry) {
   const int type = lua_getfield(L, -1, "mass");
   if (type == LUA_TNIL) arg_error(L, arg, "entry %d: field 'mass' is required", entry);
@@ -158,6 +158,7 @@ double entry_mass(lua_State* L, int arg, int entry) {
   return m;
 }
 
+// Field `name` of the entry table on top of the stack: a value of a math type (vec3, mat3).
 template <class T, T* (*test)(lua_State*, int)>
 T entry_value(lua_State* L, int arg, int entry, const char* name, const char* type_name) {
   lua_getfield(L, -1, name);
@@ -308,11 +309,14 @@ std::vector<MeshTriangle> check_triangles(lua_State* L, int arg, int vertex_coun
       arg_error(L, arg, "entry %d must be a table of 3 vertex indices {i, j, k}, got %s", t,
                 is_table ? "a table of another shape" : luaL_typename(L, -1));
     for (int k = 0; k < 3; ++k) {
-      lua_rawgeti(L, -1, k + 1);
-      if (!lua_isinteger(L, -1))
+      // Like luaL_checkinteger, a float with an integral value (2.0) is accepted.
+      int is_integer = 0;
+      const lua_Integer index =
+          lua_rawgeti(L, -1, k + 1) == LUA_TNUMBER ? lua_tointegerx(L, -1, &is_integer) : 0;
+      if (!is_integer)
         arg_error(L, arg, "entry %d: vertex index %d must be an integer, got %s", t, k + 1,
-                  luaL_tolstring(L, -1, nullptr));
-      const lua_Integer index = lua_tointeger(L, -1);
+                  lua_type(L, -1) == LUA_TNUMBER ? luaL_tolstring(L, -1, nullptr)
+                                                 : luaL_typename(L, -1));
       if (index < 1 || index > vertex_count)
         arg_error(L, arg, "entry %d: vertex index %I is out of range (the vertices are 1 to %d)",
                   t, index, vertex_count);

@@ -122,6 +122,14 @@ T.case("mesh: a box mesh is the solid box", function()
   T.near(I, inertia.solid_box(12, 1, 2, 3), 1e-12, "tensor about the COM")
   local m1 = inertia.mesh(vertices, triangles)
   T.near(m1, 6, 1e-13, "density defaults to 1")
+  local float_indices = {}
+  for i, t in ipairs(triangles) do float_indices[i] = {t[1] + 0.0, t[2] * 1.0, t[3] / 1} end
+  T.equal(inertia.mesh(vertices, float_indices), m1, "2.0 is an index, as in luaL_checkinteger")
+  T.fails(function() inertia.mesh(vertices, {{1, 2, 3.5}}) end,
+    "bad argument #2 to 'inertia.mesh' (entry 1: vertex index 3 must be an integer, got 3.5)",
+    "fractional index")
+  T.fails(function() inertia.mesh(vertices, {{1, 2, "3"}}) end,
+    "(entry 1: vertex index 3 must be an integer, got string)", "string index")
 end)
 
 T.case("inertia.check", function()
