@@ -15,5 +15,7 @@ void open_help(lua_State* L, int lib);
 void open_lesson(lua_State* L, int lib);
 void open_plot(lua_State* L, int lib);
 void open_csv(lua_State* L, int lib);
+void open_motion(lua_State* L, int lib);
+void open_ode(lua_State* L, int lib);
 
 }  // namespace rigidlab::lua

@@ -17,6 +17,8 @@ int open_library(lua_State* L) {
   open_lesson(L, lib);
   open_plot(L, lib);
   open_csv(L, lib);
+  open_motion(L, lib);
+  open_ode(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;
