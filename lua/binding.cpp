@@ -202,9 +202,10 @@ void check_fields(lua_State* L, int arg, const char* const* allowed) {
         luaL_addstring(&list, *a);
       }
       luaL_pushresult(&list);
+      const int list_index = lua_gettop(L);  // luaL_tolstring below pushes one more
       const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2)
                                                         : luaL_tolstring(L, -2, nullptr);
-      arg_error(L, arg, "unknown field '%s' (fields are: %s)", key, lua_tostring(L, -2));
+      arg_error(L, arg, "unknown field '%s' (fields are: %s)", key, lua_tostring(L, list_index));
     }
   }
 }
