@@ -1,27 +1,105 @@
-// Temporary: replaced by the real CLI (REPL, scripts). Dispatches the lesson commands and
-// runs a file or -e CODE.
+// rigidlab: the command line. Behaves as Lua's own `lua` (lua.c) where they overlap: options,
+// the `arg` table, a protected main, the REPL; and dispatches the subcommands of
+// cli/commands.hpp. Exit status: 0 success, 1 a script error, 2 a usage error.
+#include <unistd.h>
+
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
-#include "cli/lessons.hpp"
+#include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
+#include "cli/options.hpp"
+#include "cli/repl.hpp"
+#include "cli/run.hpp"
+#include "cli/usage.hpp"
 #include "lua/rigidlab.hpp"
 
-int main(int argc, char** argv) {
-  if (argc >= 2) {
-    const std::vector<std::string> rest(argv + 2, argv + argc);
-    if (!std::strcmp(argv[1], "lessons")) return rigidlab::cli::list_lessons();
-    if (!std::strcmp(argv[1], "lesson")) return rigidlab::cli::run_lesson(rest.empty() ? "" : rest[0]);
-    if (!std::strcmp(argv[1], "check"))
-      return rigidlab::cli::check_lessons(rest, rigidlab::cli::default_check_limits());
+namespace {
+
+using namespace rigidlab::cli;
+
+// What pmain needs and what it reports back.
+struct Session {
+  int argc;
+  char** argv;
+  const Options* options;
+  int exit_status = 0;
+};
+
+// Runs -e and -l in order; false after the first failure (already reported).
+bool run_actions(lua_State* L, const Options& options) {
+  for (const Options::Action& action : options.actions) {
+    const int status = action.option == 'e' ? run_code(L, action.value.c_str())
+                                            : require_module(L, action.value.c_str());
+    if (status != LUA_OK) return false;
   }
-  lua_State* L = luaL_newstate();
+  return true;
+}
+
+// lua.c's pmain: everything that touches Lua runs here, in protected mode.
+int protected_main(lua_State* L) {
+  Session& session = *static_cast<Session*>(lua_touserdata(L, 1));
+  const Options& options = *session.options;
+  lua_settop(L, 0);
+  if (options.version) std::printf("%s\n", version_line().c_str());
+  if (options.ignore_environment) {  // read by the package library as it opens
+    lua_pushboolean(L, 1);
+    lua_setfield(L, LUA_REGISTRYINDEX, "LUA_NOENV");
+  }
   rigidlab::lua::open_all(L);
-  int status = LUA_OK;
-  if (argc == 3 && std::strcmp(argv[1], "-e") == 0) status = luaL_dostring(L, argv[2]);
-  else if (argc == 2) status = luaL_dofile(L, argv[1]);
-  if (status != LUA_OK) std::fprintf(stderr, "rigidlab: %s\n", lua_tostring(L, -1));
+  install_interrupt_stop_check(L);
+  create_arg_table(L, session.argc, session.argv, options.script);
+  lua_gc(L, LUA_GCRESTART);
+  lua_gc(L, LUA_GCGEN, 0, 0);  // as lua.c: generational collection
+  if (options.warnings) lua_warning(L, "@on", 0);
+  if (!run_actions(L, options)) {
+    session.exit_status = 1;
+    return 0;
+  }
+  if (options.script > 0) {
+    const char* path = script_is_stdin(session.argv, options) ? nullptr
+                                                              : session.argv[options.script];
+    const int status = run_script(L, path);
+    if (status != LUA_OK) {
+      session.exit_status = status == LUA_ERRFILE ? exit_usage : 1;
+      return 0;
+    }
+  }
+  const bool nothing_to_run = options.script == 0 && options.actions.empty() && !options.version;
+  if (options.interactive || nothing_to_run) run_repl(L, isatty(STDIN_FILENO) != 0);
+  return 0;
+}
+
+int run_lua(int argc, char** argv, const Options& options) {
+  lua_State* L = luaL_newstate();
+  if (L == nullptr) {
+    std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
+    return 1;
+  }
+  lua_gc(L, LUA_GCSTOP);  // no collection while the libraries are built
+  Session session{argc, argv, &options};
+  lua_pushcfunction(L, protected_main);
+  lua_pushlightuserdata(L, &session);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    report_error(L, "rigidlab: ");
+    session.exit_status = 1;
+  }
   lua_close(L);
-  return status == LUA_OK ? 0 : 1;
+  return session.exit_status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (const Subcommand* command = find_subcommand(argc, argv))
+    return command->run(std::vector<std::string>(argv + 2, argv + argc));
+  Options options;
+  const std::string error = parse_options(argc, argv, options);
+  if (!error.empty()) return usage_error(error);
+  if (options.help) {
+    print_help(stdout);
+    return 0;
+  }
+  return run_lua(argc, argv, options);
 }

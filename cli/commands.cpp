@@ -1,0 +1,61 @@
+#include "cli/commands.hpp"
+
+#include <sys/stat.h>
+
+#include <cstring>
+
+#include "cli/lessons.hpp"
+#include "cli/usage.hpp"
+
+namespace rigidlab::cli {
+namespace {
+
+// A subcommand's arguments are ids and files; an option there is a usage error, not a lesson
+// named "-x".
+int reject_options(const char* command, const std::vector<std::string>& arguments) {
+  for (const std::string& argument : arguments)
+    if (argument.size() > 1 && argument[0] == '-')
+      return usage_error("unrecognized option '" + argument + "' for '" + command + "'");
+  return 0;
+}
+
+int lessons_command(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return usage_error("'lessons' takes no arguments");
+  return list_lessons();
+}
+
+int lesson_command(const std::vector<std::string>& arguments) {
+  if (const int status = reject_options("lesson", arguments)) return status;
+  if (arguments.size() > 1) return usage_error("'lesson' takes one lesson id or file");
+  return run_lesson(arguments.empty() ? "" : arguments[0]);
+}
+
+int check_command(const std::vector<std::string>& arguments) {
+  if (const int status = reject_options("check", arguments)) return status;
+  return check_lessons(arguments, default_check_limits());
+}
+
+bool is_regular_file(const char* path) {
+  struct stat info {};
+  return stat(path, &info) == 0 && S_ISREG(info.st_mode);
+}
+
+}  // namespace
+
+const Subcommand subcommands[] = {
+    {"lessons", "", "list the lessons: id, title, source", lessons_command},
+    {"lesson", "[ID|FILE]", "step through a lesson (no ID: a menu of them)", lesson_command},
+    {"check", "[ID|FILE ...]", "run the checks of lessons (default: all), under limits",
+     check_command},
+    {nullptr, nullptr, nullptr, nullptr},
+};
+
+const Subcommand* find_subcommand(int argc, char** argv) {
+  if (argc < 2) return nullptr;
+  for (const Subcommand* command = subcommands; command->name != nullptr; ++command)
+    if (std::strcmp(argv[1], command->name) == 0)
+      return is_regular_file(argv[1]) ? nullptr : command;
+  return nullptr;
+}
+
+}  // namespace rigidlab::cli

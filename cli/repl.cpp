@@ -1,0 +1,106 @@
+#include "cli/repl.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "cli/line_reader.hpp"
+#include "cli/run.hpp"
+#include "cli/usage.hpp"
+
+namespace rigidlab::cli {
+namespace {
+
+constexpr const char* chunkname = "=stdin";
+
+// The prompt: the global _PROMPT (first line) or _PROMPT2 (continuation) if it is a string
+// or a number, as in lua.c.
+std::string prompt(lua_State* L, bool first_line) {
+  lua_getglobal(L, first_line ? "_PROMPT" : "_PROMPT2");
+  const char* custom = lua_isstring(L, -1) ? lua_tostring(L, -1) : nullptr;
+  std::string result = custom != nullptr ? custom : first_line ? "> " : ">> ";
+  lua_pop(L, 1);
+  return result;
+}
+
+// A syntax error whose message ends in "<eof>": the chunk is incomplete, not wrong.
+bool incomplete(lua_State* L, int status) {
+  if (status != LUA_ERRSYNTAX) return false;
+  size_t length = 0;
+  const char* message = lua_tolstring(L, -1, &length);
+  constexpr size_t mark = sizeof "<eof>" - 1;
+  return length >= mark && std::strcmp(message + length - mark, "<eof>") == 0;
+}
+
+// Compiles `return <chunk>;` and leaves the function pushed when that works: the chunk is an
+// expression list whose values are to be printed.
+bool load_expression(lua_State* L, const std::string& chunk) {
+  const std::string code = "return " + chunk + ";";
+  if (load_text(L, code.data(), code.size(), chunkname) == LUA_OK) return true;
+  lua_pop(L, 1);
+  return false;
+}
+
+// An unfinished expression (`(1 +`): its `return` form ends in <eof> too.
+bool incomplete_expression(lua_State* L, const std::string& chunk) {
+  const std::string code = "return " + chunk;
+  const bool result = incomplete(L, load_text(L, code.data(), code.size(), chunkname));
+  lua_pop(L, 1);
+  return result;
+}
+
+// Reads and compiles one chunk: the function (or the syntax error) is pushed and `status` set.
+// The lines read so far are tried as an expression, then as statements; while either is
+// incomplete another line is read (a chunk on several lines behaves as on one). Returns
+// `interrupted` or `end` with nothing pushed.
+ReadStatus read_chunk(lua_State* L, LineReader& reader, int& status) {
+  std::string chunk;
+  const ReadStatus first = reader.read(prompt(L, true).c_str(), chunk);
+  if (first != ReadStatus::line) return first;
+  if (chunk[0] == '=') chunk = "return " + chunk.substr(1);  // Lua 5.2's `=expression`
+  for (;;) {
+    if (load_expression(L, chunk)) {
+      status = LUA_OK;
+      break;
+    }
+    status = load_text(L, chunk.data(), chunk.size(), chunkname);
+    if (!incomplete(L, status) && !(status != LUA_OK && incomplete_expression(L, chunk))) break;
+    std::string more;
+    const ReadStatus next = reader.read(prompt(L, false).c_str(), more);
+    if (next == ReadStatus::interrupted) {  // Ctrl-C abandons the whole chunk
+      lua_pop(L, 1);
+      return next;
+    }
+    if (next == ReadStatus::end) break;  // report the "<eof>" error
+    lua_pop(L, 1);
+    chunk += "\n" + more;
+  }
+  reader.remember(chunk);
+  return ReadStatus::line;
+}
+
+}  // namespace
+
+void run_repl(lua_State* L, bool terminal) {
+  const std::unique_ptr<LineReader> reader =
+      terminal ? make_terminal_reader(L) : make_stream_reader();
+  const Traceback traceback = terminal ? Traceback::append : Traceback::omit;
+  if (terminal) std::printf("%s\n", banner().c_str());
+  const int base = lua_gettop(L);
+  for (;;) {
+    lua_settop(L, base);
+    int status = LUA_OK;
+    const ReadStatus read = read_chunk(L, *reader, status);
+    if (read == ReadStatus::end) break;
+    if (read == ReadStatus::interrupted) continue;
+    if (status == LUA_OK) status = call_chunk(L, 0, LUA_MULTRET, traceback);
+    if (status == LUA_OK)
+      print_results(L, base);
+    else
+      report_error(L, "");
+  }
+  lua_settop(L, base);
+  std::fflush(stdout);
+}
+
+}  // namespace rigidlab::cli

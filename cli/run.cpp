@@ -1,0 +1,128 @@
+#include "cli/run.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "cli/interrupt.hpp"
+#include "cli/usage.hpp"
+
+namespace rigidlab::cli {
+namespace {
+
+// lua.c's msghandler: an error object that is not a string becomes its __tostring or a
+// description of its type; upvalue 1 says whether to append the stack traceback.
+int message_handler(lua_State* L) {
+  const char* message = lua_tostring(L, 1);
+  if (message == nullptr) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+    message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  }
+  if (lua_toboolean(L, lua_upvalueindex(1)))
+    luaL_traceback(L, L, message, 1);
+  else
+    lua_pushstring(L, message);
+  return 1;
+}
+
+// Pushes arg[1], ..., arg[n] (the script's arguments) and returns n, as lua.c's pushargs.
+int push_script_arguments(lua_State* L) {
+  if (lua_getglobal(L, "arg") != LUA_TTABLE) luaL_error(L, "'arg' is not a table");
+  const int count = static_cast<int>(luaL_len(L, -1));
+  luaL_checkstack(L, count + 3, "too many arguments to script");
+  for (int i = 1; i <= count; ++i) lua_rawgeti(L, -i, i);
+  lua_remove(L, -count - 1);
+  return count;
+}
+
+constexpr const char* script_prefix = "rigidlab: ";
+
+}  // namespace
+
+int call_chunk(lua_State* L, int arguments, int results, Traceback traceback) {
+  const int function = lua_gettop(L) - arguments;
+  lua_pushboolean(L, traceback == Traceback::append);
+  lua_pushcclosure(L, message_handler, 1);
+  lua_insert(L, function);
+  int status;
+  {
+    InterruptibleCall interruptible(L);
+    status = lua_pcall(L, arguments, results, function);
+  }
+  lua_remove(L, function);
+  return status;
+}
+
+void report_error(lua_State* L, const char* prefix) {
+  const char* message = lua_tostring(L, -1);
+  std::fflush(stdout);  // what was printed before the error comes before it
+  std::fprintf(stderr, "%s%s\n", prefix,
+               message != nullptr ? message : "(error object is not a string)");
+  std::fflush(stderr);
+  lua_pop(L, 1);
+}
+
+int load_text(lua_State* L, const char* text, size_t length, const char* chunkname) {
+  return luaL_loadbufferx(L, text, length, chunkname, "t");
+}
+
+int run_code(lua_State* L, const char* code) {
+  int status = load_text(L, code, std::strlen(code), "=(command line)");
+  if (status == LUA_OK) status = call_chunk(L, 0, 0, Traceback::append);
+  if (status != LUA_OK) report_error(L, script_prefix);
+  return status;
+}
+
+int require_module(lua_State* L, const char* spec) {
+  const char* equals = std::strchr(spec, '=');
+  const std::string global = equals != nullptr ? std::string(spec, equals) : std::string(spec);
+  lua_getglobal(L, "require");
+  lua_pushstring(L, equals != nullptr ? equals + 1 : spec);
+  const int status = call_chunk(L, 1, 1, Traceback::append);
+  if (status == LUA_OK)
+    lua_setglobal(L, global.c_str());
+  else
+    report_error(L, script_prefix);
+  return status;
+}
+
+int run_script(lua_State* L, const char* path) {
+  int status = luaL_loadfilex(L, path, "t");
+  if (status == LUA_ERRFILE) {  // nothing ran: the command line named a file that is not there
+    usage_error(lua_tostring(L, -1));
+    lua_pop(L, 1);
+    return status;
+  }
+  if (status == LUA_ERRSYNTAX && std::strncmp(lua_tostring(L, -1), "attempt to load", 15) == 0) {
+    // Lua's refusal of a binary chunk names no file: say which one.
+    lua_pushfstring(L, "%s: %s", path != nullptr ? path : "stdin", lua_tostring(L, -1));
+    lua_remove(L, -2);
+  }
+  if (status == LUA_OK) status = call_chunk(L, push_script_arguments(L), 0, Traceback::append);
+  if (status != LUA_OK) report_error(L, script_prefix);
+  return status;
+}
+
+void create_arg_table(lua_State* L, int argc, char** argv, int script) {
+  lua_createtable(L, argc - script - 1 > 0 ? argc - script - 1 : 0, script + 1);
+  for (int i = 0; i < argc; ++i) {
+    lua_pushstring(L, argv[i]);
+    lua_rawseti(L, -2, i - script);
+  }
+  lua_setglobal(L, "arg");
+}
+
+void print_results(lua_State* L, int base) {
+  const int count = lua_gettop(L) - base;
+  if (count <= 0) return;
+  luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
+  lua_getglobal(L, "print");
+  lua_insert(L, base + 1);
+  if (call_chunk(L, count, 0, Traceback::omit) != LUA_OK) {
+    lua_pushfstring(L, "error calling 'print' (%s)", lua_tostring(L, -1));
+    lua_remove(L, -2);
+    report_error(L, "");
+  }
+}
+
+}  // namespace rigidlab::cli
