@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# The REPL reading a pipe: the same evaluation as in a terminal (expressions print their
+# values, statements span lines), no banner, no prompts, each error one line on stderr, and
+# exit 0 at the end of input. Usage: repl_pipe_test.sh PATH_TO_RIGIDLAB
+set -euo pipefail
+source "$(dirname "$0")/testlib.sh" "$1"
+
+run "the session of issue 2" --stdin $'1+1\nvec3(1,2,3)\nerror("boom")\nx = 5\nx * 2\n' -- "$rigidlab"
+expect_status 0
+expect_stdout $'2\n(1, 2, 3)\n10\n'
+expect_stderr_line 1 "stdin:1: boom"
+expect_stderr_line_count 1
+
+run "a chunk over several lines" --stdin $'function f()\nreturn 3\nend\nf()\n' -- "$rigidlab"
+expect_status 0
+expect_stdout $'3\n'
+expect_stderr_empty
+
+run "an unfinished expression continues" --stdin $'1 +\n2\n(\n3\n)\n' -- "$rigidlab"
+expect_stdout $'3\n3\n'
+
+run "a call over lines prints its values, as on one line" --stdin $'math.max(\n1,\n5)\n' -- "$rigidlab"
+expect_stdout $'5\n'
+
+run "a long string over lines" --stdin $'s = [[a\nb]]\n#s\n' -- "$rigidlab"
+expect_stdout $'3\n'
+
+run "several values, tab separated; nil" --stdin $'1, "two", nil, true\nnil\n' -- "$rigidlab"
+expect_stdout $'1\ttwo\tnil\ttrue\nnil\n'
+
+run "statements and calls without values print nothing" \
+  --stdin $'local y = 1\nprint("printed")\nfunction g() end\ng()\n\n   \n' -- "$rigidlab"
+expect_stdout $'printed\n'
+expect_stderr_empty
+
+run "values print with tostring: rigidlab types" \
+  --stdin $'mat3.identity()\nquat()\n{}\n' -- "$rigidlab"
+expect_stdout_contains "((1, 0, 0), (0, 1, 0), (0, 0, 1))"
+[[ $(sed -n 3p "$scratch/out") == table:* ]] && pass || fail "a table prints as table: 0x..."
+
+run "=expression, as in Lua 5.2" --stdin $'=2^10\n' -- "$rigidlab"
+expect_stdout $'1024.0\n'
+
+run "a runtime error in a binding" --stdin $'vec3(1,2,3):cross(5)\n1\n' -- "$rigidlab"
+expect_status 0
+expect_stdout $'1\n'
+expect_stderr_line 1 "stdin:1: bad argument #1 to 'vec3:cross' (vec3 expected, got number)"
+expect_stderr_line_count 1
+
+run "a syntax error, then evaluation goes on" --stdin $'x = = 1\n"after"\n' -- "$rigidlab"
+expect_status 0
+expect_stdout $'after\n'
+expect_stderr_line 1 "stdin:1: unexpected symbol near '='"
+
+run "input ending inside a chunk" --stdin $'function h()\nreturn 1\n' -- "$rigidlab"
+expect_status 0
+expect_stdout ""
+expect_stderr_line 1 "stdin:2: 'end' expected (to close 'function' at line 1) near <eof>"
+
+run "no final newline" --stdin $'40 + 2' -- "$rigidlab"
+expect_stdout $'42\n'
+
+run "a non-string error object" --stdin $'error({})\nerror(setmetatable({}, {__tostring = function() return "mine" end}))\n' -- "$rigidlab"
+expect_stderr_line 1 "(error object is a table value)"
+expect_stderr_line 2 "mine"
+
+run "print is what prints" --stdin $'print = nil\n1\n' -- "$rigidlab"
+expect_status 0
+expect_stderr_line 1 "error calling 'print' (attempt to call a nil value)"
+
+run "globals persist; prompts are not printed" --stdin $'_PROMPT = "custom> "\na = 6\na * 7\n' -- "$rigidlab"
+expect_stdout $'42\n'
+
+run "io.read reads the next lines of stdin" --stdin $'io.read("n") * 2\n21\n"next"\n' -- "$rigidlab"
+expect_stdout $'42\nnext\n'
+
+run "os.exit ends the session with its status" --stdin $'print("a")\nos.exit(4)\nprint("b")\n' -- "$rigidlab"
+expect_status 4
+expect_stdout $'a\n'
+
+run "-i after -e reads stdin as the REPL" --stdin $'x + 1\n' -- "$rigidlab" -e 'x = 41' -i
+expect_status 0
+expect_stdout $'42\n'
+expect_stderr_empty
+
+printf 'y = 9\n' >"$scratch/setup.lua"
+run "-i after a script" --stdin $'y * y\n' -- "$rigidlab" -i "$scratch/setup.lua"
+expect_stdout $'81\n'
+
+run "-e alone does not read stdin" --stdin $'print("must not run")\n' -- "$rigidlab" -e 'print("only")'
+expect_stdout $'only\n'
+
+run "an error in -e skips the REPL, exit 1" --stdin $'1\n' -- "$rigidlab" -e 'error("x")' -i
+expect_status 1
+expect_stdout ""
+
+finish

@@ -1,0 +1,186 @@
+#!/usr/bin/env bash
+# The REPL in a terminal, driven through tmux: banner, prompts, values, Ctrl-C interrupting a
+# loop and clearing a line, multi-line chunks, Tab completion, tracebacks, Ctrl-D, and the
+# history in $HOME/.rigidlab_history. Exit 77 (CTest: skipped) when tmux is not installed.
+# Usage: repl_terminal_test.sh PATH_TO_RIGIDLAB
+set -euo pipefail
+source "$(dirname "$0")/testlib.sh" "$1"
+
+if ! command -v tmux >/dev/null; then
+  echo "tmux is not installed: skipping the terminal tests"
+  exit 77
+fi
+unset TMUX
+socket=$scratch/tmux.socket
+trap 'tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"' EXIT
+home=$scratch/home
+mkdir "$home"
+history=$home/.rigidlab_history
+
+# start ENV_ASSIGNMENTS...: rigidlab in a new 100x40 terminal; its exit status goes to
+# $scratch/status when it ends. With $stderr_file set, stderr goes there, not to the screen.
+stderr_file=""
+start() {
+  rm -f "$scratch/status"
+  local redirect=""
+  [[ -n $stderr_file ]] && redirect="2>'$stderr_file'"
+  tmux -S "$socket" new-session -d -x 100 -y 40 \
+    "cd '$scratch' && env $* '$rigidlab' $redirect; echo \$? >'$scratch/status'"
+}
+screen() { tmux -S "$socket" capture-pane -p -J 2>/dev/null || true; }
+type_text() { tmux -S "$socket" send-keys -l "$1"; }
+key() { tmux -S "$socket" send-keys "$@"; }
+enter() { type_text "$1"; key Enter; }
+
+# wait_for NAME REGEX: until a line of the screen matches REGEX (extended), 5 s at most.
+wait_for() {
+  case_name=$1
+  local deadline=$((SECONDS + 5))
+  until screen | grep -qE -- "$2"; do
+    if ((SECONDS > deadline)); then
+      fail "no line matching /$2/ on the screen:"
+      screen | sed '/^$/d; s/^/    | /'
+      return 0
+    fi
+    sleep 0.05
+  done
+  pass
+}
+
+# wait_exit NAME STATUS: until rigidlab has ended, with that status.
+wait_exit() {
+  case_name=$1
+  local deadline=$((SECONDS + 5))
+  until [[ -s $scratch/status ]]; do
+    if ((SECONDS > deadline)); then
+      fail "rigidlab did not exit"
+      return 0
+    fi
+    sleep 0.05
+  done
+  [[ $(cat "$scratch/status") == "$2" ]] && pass || fail "exit status $(cat "$scratch/status"), want $2"
+}
+
+prompt_count() { screen | grep -cE '^> ' || true; }
+# wait_prompt NAME: until a new `> ` prompt has appeared after the last command.
+wait_prompt() {
+  case_name=$1
+  local want=$2 deadline=$((SECONDS + 5))
+  until (($(prompt_count) >= want)); do
+    if ((SECONDS > deadline)); then
+      fail "no new prompt"
+      screen | sed '/^$/d; s/^/    | /'
+      return 0
+    fi
+    sleep 0.05
+  done
+  pass
+}
+
+start HOME="$home"
+wait_for "banner" '^rigidlab [0-9.]+ \(Lua 5\.4\.[0-9]+\) — help\(\) lists topics, Ctrl-D exits$'
+wait_for "first prompt" '^> $'
+
+enter '1+1'
+wait_for "an expression prints its value" '^2$'
+
+enter 'print("looping") for i=1,1e12 do end'
+wait_for "a long loop starts" '^looping$'
+key C-c
+wait_for "Ctrl-C interrupts a running loop" 'interrupted!$'
+wait_for "with a traceback" '^stack traceback:$'
+enter '2*3'
+wait_for "the REPL goes on after Ctrl-C" '^6$'
+
+type_text 'error("this line was never run")'
+wait_for "a line typed" '^> error\("this line was never run"\)$'
+key C-c
+enter '7*6'
+wait_for "Ctrl-C at the prompt clears the line" '^42$'
+case_name="the cleared line did not run"
+screen | grep -q 'never run$' && fail "it ran" || pass
+
+enter 'function sq(x)'
+wait_for "a continuation prompt" '^>> $'
+enter 'return x * x'
+enter 'end'
+enter 'sq(12)'
+wait_for "a function typed over three lines" '^144$'
+
+type_text 'inertia.solid_bo'
+key Tab
+wait_for "Tab completes a field" '^> inertia\.solid_box$'
+key Enter
+wait_for "a function value prints" '^(builtin: |function: )'
+
+enter 'v = vec3(1, 2, 3)'
+type_text 'v:cro'
+key Tab
+type_text '(vec3(0, 0, 1))'
+key Enter
+wait_for "Tab completes a method of a vec3" '^\(2, -1, 0\)$'
+
+enter 'vec3(1,2,3):cross(5)'
+wait_for "a binding error names function and argument" \
+  "^stdin:1: bad argument #1 to 'vec3:cross' \(vec3 expected, got number\)$"
+wait_for "a runtime error has a traceback" "in method 'cross'"
+
+enter 'function unfinished()'
+wait_for "continuation" '^>> $'
+before=$(prompt_count)
+key C-d
+wait_for "Ctrl-D inside a chunk reports it" "^stdin:1: 'end' expected near <eof>$"
+wait_prompt "and the REPL goes on" $((before + 1))
+enter '1+2'
+wait_for "still evaluating" '^3$'
+
+key C-d
+wait_exit "Ctrl-D at the prompt exits 0" 0
+case_name="the session is gone"
+tmux -S "$socket" has-session 2>/dev/null && fail "still running" || pass
+
+# libedit's history file: a header line, then one entry a line with spaces and newlines
+# written as octal escapes (strvis).
+case_name="the history file"
+if [[ ! -f $history ]]; then
+  fail "no $history"
+else
+  for entry in '_HiStOrY_V2_' '1+1' 'print("looping")\040for\040i=1,1e12\040do\040end' '2*3' '7*6' \
+      'function\040sq(x)\012return\040x\040*\040x\012end' 'sq(12)' 'function\040unfinished()' '1+2'; do
+    grep -qxF -- "$entry" "$history" && pass || fail "no line '$entry' in the history"
+  done
+  grep -qF 'never\040run' "$history" && fail "the cleared line is in the history" || pass
+fi
+
+# A new session loads the history: Up recalls the last entry; repeating it adds no duplicate.
+start HOME="$home"
+wait_for "second session" '^> $'
+key Up
+wait_for "Up recalls the last line of the previous session" '^> 1\+2$'
+key Enter
+wait_for "and it runs" '^3$'
+enter 'os.exit(5)'
+wait_exit "os.exit(5) in the REPL" 5
+case_name="a repeated line is stored once; os.exit's line is saved"
+[[ $(tail -n 2 "$history") == $'1+2\nos.exit(5)' ]] && pass || fail "history ends with: $(tail -n 3 "$history")"
+
+# Without HOME, or with a HOME where nothing can be written, the REPL still works.
+start -u HOME
+wait_for "no HOME" '^> $'
+enter '10/4'
+wait_for "no HOME: evaluates" '^2\.5$'
+key C-d
+wait_exit "no HOME: exits 0" 0
+
+stderr_file=$scratch/stderr
+start HOME=/nonexistent/rigidlab-test
+wait_for "unwritable history" '^> $'
+enter '2^3'
+wait_for "unwritable history: evaluates" '^8\.0$'
+key C-d
+wait_exit "unwritable history: exits 0" 0
+case_name="unwritable history: one warning on stderr"
+[[ $(cat "$scratch/stderr") == "rigidlab: the history is not saved (cannot write /nonexistent/rigidlab-test/.rigidlab_history: No such file or directory)" ]] \
+  && pass || fail "stderr: $(cat "$scratch/stderr")"
+
+finish

@@ -1,0 +1,154 @@
+#!/usr/bin/env bash
+# Running scripts: `rigidlab FILE.lua args`, `rigidlab - args` (stdin), the arg table as lua.c
+# builds it, error messages and exit codes, text-only loading, subcommand or file.
+# Usage: script_test.sh PATH_TO_RIGIDLAB
+set -euo pipefail
+source "$(dirname "$0")/testlib.sh" "$1"
+
+cat >"$scratch/args.lua" <<'LUA'
+print("varargs", ...)
+print("arg", #arg, arg[0], arg[1], arg[2], arg[3])
+print("before", arg[-1], arg[-2], arg[-3] == nil)
+LUA
+run "a script with arguments" -- "$rigidlab" "$scratch/args.lua" one "two words" 3
+expect_status 0
+expect_stdout "varargs	one	two words	3
+arg	3	$scratch/args.lua	one	two words	3
+before	$rigidlab	nil	true
+"
+expect_stderr_empty
+
+run "negative indices hold the interpreter and its options" -- \
+  "$rigidlab" -e 'x = 1' "$scratch/args.lua" a
+expect_stdout "varargs	a
+arg	1	$scratch/args.lua	a	nil	nil
+before	x = 1	-e	false
+"
+
+run "without a script arg[0] is the interpreter" -- "$rigidlab" -e 'print(arg[0], arg[1], arg[2], #arg)'
+expect_stdout "$rigidlab	-e	print(arg[0], arg[1], arg[2], #arg)	2"$'\n'
+
+run "options after the script are the script's" -- "$rigidlab" "$scratch/args.lua" -e -v
+expect_status 0
+expect_stdout "varargs	-e	-v
+arg	2	$scratch/args.lua	-e	-v	nil
+before	$rigidlab	nil	true
+"
+
+run "- runs stdin as a script" --stdin $'local a, b = ...\nprint(a + b, arg[0])\n' -- "$rigidlab" - 2 3
+expect_status 0
+expect_stdout $'5\t-\n'
+
+run "- with a multi-line script" --stdin $'local function f(n)\n  return n * 2\nend\nprint(f(21))\n' -- "$rigidlab" -
+expect_stdout $'42\n'
+
+cat >"$scratch/fails.lua" <<'LUA'
+local function inner()
+  error("something broke")
+end
+inner()
+LUA
+run "a runtime error: message with chunk and line, traceback, exit 1" -- "$rigidlab" "$scratch/fails.lua"
+expect_status 1
+expect_stdout ""
+expect_stderr_line 1 "rigidlab: $scratch/fails.lua:2: something broke"
+expect_stderr_line 2 "stack traceback:"
+expect_stderr_line 3 "	[C]: in function 'error'"
+expect_stderr_contains "$scratch/fails.lua:2: in local 'inner'"
+expect_stderr_contains "$scratch/fails.lua:4: in main chunk"
+
+printf 'print("printed first")\nlocal x = = 1\n' >"$scratch/syntax.lua"
+run "a syntax error: nothing runs, exit 1" -- "$rigidlab" "$scratch/syntax.lua"
+expect_status 1
+expect_stdout ""
+expect_stderr_line 1 "rigidlab: $scratch/syntax.lua:2: unexpected symbol near '='"
+
+printf 'print("out before")\nerror("after output")\n' >"$scratch/order.lua"
+run "output before an error is kept" -- "$rigidlab" "$scratch/order.lua"
+expect_status 1
+expect_stdout $'out before\n'
+expect_stderr_line 1 "rigidlab: $scratch/order.lua:2: after output"
+
+run "an error object that is a table" -- "$rigidlab" -e 'error({})'
+expect_status 1
+expect_stderr_line 1 "rigidlab: (error object is a table value)"
+run "an error object with __tostring" -- \
+  "$rigidlab" -e 'error(setmetatable({}, {__tostring = function() return "custom" end}))'
+expect_status 1
+expect_stderr_line 1 "rigidlab: custom"
+
+run "a missing script is a usage error (exit 2)" -- "$rigidlab" "$scratch/absent.lua"
+expect_status 2
+expect_stdout ""
+expect_stderr_line 1 "rigidlab: cannot open $scratch/absent.lua: No such file or directory"
+expect_stderr_line 2 "Try 'rigidlab --help' for more information."
+
+run "a directory as script" -- "$rigidlab" "$scratch"
+expect_status 2
+expect_stderr_line 1 "rigidlab: cannot read $scratch: Is a directory"
+
+run "os.exit(3) exits 3" -- "$rigidlab" -e 'print("bye") os.exit(3)'
+expect_status 3
+expect_stdout $'bye\n'
+run "os.exit(true) exits 0" -- "$rigidlab" -e 'os.exit(true)'
+expect_status 0
+run "os.exit(false) exits 1" -- "$rigidlab" -e 'os.exit(false)'
+expect_status 1
+printf 'os.exit(7, true)\n' >"$scratch/exit.lua"
+run "os.exit(7, true) from a script" -- "$rigidlab" "$scratch/exit.lua"
+expect_status 7
+
+printf '#!/usr/bin/env rigidlab\nprint("shebang skipped")\n' >"$scratch/shebang.lua"
+run "a #! first line is skipped" -- "$rigidlab" "$scratch/shebang.lua"
+expect_stdout $'shebang skipped\n'
+
+# Scripts are text: precompiled chunks are refused, from the command line and from load().
+printf 'local f = assert(io.open(arg[1], "wb"))\nf:write(string.dump(function() print(1) end))\nf:close()\n' \
+  >"$scratch/dump.lua"
+"$rigidlab" "$scratch/dump.lua" "$scratch/binary.luac"
+run "a binary chunk is refused" -- "$rigidlab" "$scratch/binary.luac"
+expect_status 1
+expect_stderr_line 1 "rigidlab: $scratch/binary.luac: attempt to load a binary chunk (mode is 't')"
+run "- refuses binary chunks too" -- bash -c '"$1" - <"$2"' _ "$rigidlab" "$scratch/binary.luac"
+expect_status 1
+expect_stderr_line 1 "rigidlab: stdin: attempt to load a binary chunk (mode is 't')"
+
+run "require(\"rigidlab\") is the table of the globals" -- \
+  "$rigidlab" -e 'local r = require("rigidlab") print(r.vec3 == vec3, r.help == help, type(r.version))'
+expect_stdout $'true\ttrue\tstring\n'
+
+# SIGINT (Ctrl-C) stops a running script with an "interrupted!" error, as in lua.
+"$rigidlab" -e 'print("looping") io.stdout:flush() while true do end' \
+  >"$scratch/out" 2>"$scratch/err" &
+looping=$!
+for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+kill -INT "$looping"
+case_name="SIGINT interrupts a script"
+status=0
+wait "$looping" || status=$?
+expect_status 1
+expect_stderr_line 1 "rigidlab: interrupted!"
+expect_stderr_line 2 "stack traceback:"
+
+# The first argument names a command unless a file of that name exists.
+run "lessons is a command" -- "$rigidlab" lessons extra
+expect_status 2
+expect_stderr_line 1 "rigidlab: 'lessons' takes no arguments"
+run "check rejects unknown options" -- "$rigidlab" check --bogus
+expect_status 2
+expect_stderr_line 1 "rigidlab: unrecognized option '--bogus' for 'check'"
+mkdir "$scratch/cwd" "$scratch/cwd/lessons"
+printf 'print("the file named check", ...)\n' >"$scratch/cwd/check"
+run "a file named like a command is run" -- bash -c 'cd "$1" && "$2" check x' _ "$scratch/cwd" "$rigidlab"
+expect_status 0
+expect_stdout $'the file named check\tx\n'
+run "a directory named like a command does not hide it" -- \
+  bash -c 'cd "$1" && "$2" lessons extra' _ "$scratch/cwd" "$rigidlab"
+expect_status 2
+expect_stderr_line 1 "rigidlab: 'lessons' takes no arguments"
+run "a command name after an option is a script" -- \
+  bash -c 'cd "$1" && "$2" -e "x = 1" lessons' _ "$scratch" "$rigidlab"
+expect_status 2
+expect_stderr_line 1 "rigidlab: cannot open lessons: No such file or directory"
+
+finish
