@@ -27,16 +27,27 @@ set_target_properties(Rigidlab::Lua PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES "${RIGIDLAB_LUA_INCLUDE_DIR}"
   INTERFACE_LINK_LIBRARIES "${RIGIDLAB_LUA_LIBRARY};m;dl")
 
-# libedit: line editing and history for the REPL
+# libedit: line editing and history for the REPL. As for Lua, the static archives are
+# preferred when all are there (libedit-dev pulls in libncurses-dev, libbsd-dev, libmd-dev):
+# loading libedit and its three shared dependencies cost a third of `rigidlab -e ''`.
 find_path(RIGIDLAB_EDIT_INCLUDE_DIR editline/readline.h)
 find_library(RIGIDLAB_EDIT_LIBRARY NAMES edit)
 if(NOT RIGIDLAB_EDIT_INCLUDE_DIR OR NOT RIGIDLAB_EDIT_LIBRARY)
   rigidlab_missing("libedit (line editing)" libedit-dev)
 endif()
+set(RIGIDLAB_EDIT_LINK "${RIGIDLAB_EDIT_LIBRARY}")
+find_library(RIGIDLAB_EDIT_STATIC NAMES libedit.a)
+find_library(RIGIDLAB_TINFO_STATIC NAMES libtinfo.a)
+find_library(RIGIDLAB_BSD_STATIC NAMES libbsd.a)
+find_library(RIGIDLAB_MD_STATIC NAMES libmd.a)
+if(RIGIDLAB_EDIT_STATIC AND RIGIDLAB_TINFO_STATIC AND RIGIDLAB_BSD_STATIC AND RIGIDLAB_MD_STATIC)
+  set(RIGIDLAB_EDIT_LINK
+      "${RIGIDLAB_EDIT_STATIC};${RIGIDLAB_TINFO_STATIC};${RIGIDLAB_BSD_STATIC};${RIGIDLAB_MD_STATIC}")
+endif()
 add_library(Rigidlab::Edit INTERFACE IMPORTED)
 set_target_properties(Rigidlab::Edit PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES "${RIGIDLAB_EDIT_INCLUDE_DIR}"
-  INTERFACE_LINK_LIBRARIES "${RIGIDLAB_EDIT_LIBRARY}")
+  INTERFACE_LINK_LIBRARIES "${RIGIDLAB_EDIT_LINK}")
 
 # GoogleTest
 find_package(GTest QUIET)
