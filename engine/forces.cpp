@@ -1,0 +1,83 @@
+#include "engine/forces.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rigidlab {
+namespace {
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.14g", x);
+  return buffer;
+}
+
+std::string nonnegative_problem(double x, const char* what) {
+  if (!std::isfinite(x)) return std::string(what) + " must be finite, got " + number(x);
+  if (!(x >= 0.0)) return std::string(what) + " must be >= 0, got " + number(x);
+  return {};
+}
+
+// Velocity of the end of the spring on body `index` at world point p, or 0 for an anchor.
+Vec3 end_velocity(const std::vector<Body>& bodies, std::size_t index, const Vec3& p) {
+  return index == no_body ? Vec3::Zero() : point_velocity(bodies[index], p);
+}
+
+}  // namespace
+
+std::string spring_problem(const Spring& s) {
+  for (const auto& [value, what] : {std::pair{s.stiffness, "stiffness"},
+                                    std::pair{s.damping, "damping"},
+                                    std::pair{s.rest_length, "rest length"}}) {
+    std::string problem = nonnegative_problem(value, what);
+    if (!problem.empty()) return problem;
+  }
+  if (!is_finite(s.a_point) || !is_finite(s.b_point) || !is_finite(s.anchor))
+    return "attachment points must be finite";
+  if (s.a == s.b) return "a spring needs two different bodies";
+  return {};
+}
+
+std::string drag_problem(const Drag& d) {
+  std::string problem = nonnegative_problem(d.linear, "linear drag");
+  return problem.empty() ? nonnegative_problem(d.angular, "angular drag") : problem;
+}
+
+Vec3 spring_end_a(const std::vector<Body>& bodies, const Spring& s) {
+  return to_world(bodies[s.a], s.a_point);
+}
+
+Vec3 spring_end_b(const std::vector<Body>& bodies, const Spring& s) {
+  return s.b == no_body ? s.anchor : to_world(bodies[s.b], s.b_point);
+}
+
+// Baraff & Witkin 2001, "Particle System Dynamics" 4.3 (damped spring), sign for body a.
+Vec3 spring_force(const std::vector<Body>& bodies, const Spring& s) {
+  const Vec3 pa = spring_end_a(bodies, s);
+  const Vec3 pb = spring_end_b(bodies, s);
+  const Vec3 d = pb - pa;
+  const double length = d.norm();
+  if (!(length > 0.0)) return Vec3::Zero();
+  const Vec3 u = d / length;
+  const Vec3 relative_velocity = end_velocity(bodies, s.b, pb) - end_velocity(bodies, s.a, pa);
+  return (s.stiffness * (length - s.rest_length) + s.damping * relative_velocity.dot(u)) * u;
+}
+
+void apply_spring(std::vector<Body>& bodies, const Spring& s) {
+  const Vec3 f = spring_force(bodies, s);
+  apply_force(bodies[s.a], f, spring_end_a(bodies, s));
+  if (s.b != no_body) apply_force(bodies[s.b], -f, spring_end_b(bodies, s));
+}
+
+double spring_potential_energy(const std::vector<Body>& bodies, const Spring& s) {
+  const double stretch = (spring_end_b(bodies, s) - spring_end_a(bodies, s)).norm() - s.rest_length;
+  return 0.5 * s.stiffness * stretch * stretch;
+}
+
+void apply_drag(std::vector<Body>& bodies, const Drag& d) {
+  Body& b = bodies[d.body];
+  apply_force(b, -d.linear * b.velocity);
+  apply_torque(b, -d.angular * b.angular_velocity);
+}
+
+}  // namespace rigidlab

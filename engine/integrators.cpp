@@ -1,0 +1,254 @@
+#include "engine/integrators.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+namespace rigidlab {
+namespace {
+
+using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;  // a quaternion's coefficients
+
+template <std::size_t N, class Enum>
+std::optional<Enum> parse_name(const char* const (&names)[N], std::string_view name) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (name == names[i]) return static_cast<Enum>(i);
+  return std::nullopt;
+}
+
+// ω' of the Euler family for one body, computed in the body frame where I is constant:
+// ω_b = Rᵀ ω, τ_b = Rᵀ τ, then back with R. The torque impulse dt I⁻¹ τ_b comes first, then
+//   implicit:  one Newton step on backward Euler for −ω × I ω (001_*, Catto GDC 2015);
+//   explicit:  forward Euler, −dt I⁻¹ (ω × I ω) at the old ω (002_* "Torque-Free Motion");
+//   off:       the gyroscopic torque is dropped (002_* notes games often ignore it).
+template <GyroscopicTerm gyroscopic>
+Vec3 angular_velocity_update(const Body& b, const Mat3& r, double dt) {
+  Vec3 omega_body = r.transpose() * b.angular_velocity;
+  const Vec3 torque_body = r.transpose() * b.torque;
+  if constexpr (gyroscopic == GyroscopicTerm::explicit_) {
+    omega_body += dt * (b.inverse_inertia *
+                        (torque_body - omega_body.cross(b.inertia * omega_body)));
+  } else {
+    omega_body += dt * (b.inverse_inertia * torque_body);
+    if constexpr (gyroscopic == GyroscopicTerm::implicit)
+      omega_body = implicit_gyroscopic_step(b.inertia, omega_body, dt);
+  }
+  return r * omega_body;
+}
+
+// The Euler-family loop, with the gyroscopic treatment fixed at compile time so the body loop
+// has no switch. `semi_implicit` selects whether x and q use the new (true) or old velocities.
+template <bool semi_implicit, GyroscopicTerm gyroscopic>
+std::size_t euler_family_loop(std::vector<Body>& bodies, const Vec3& gravity, double dt) {
+  std::size_t first_bad = all_finite;
+  const std::size_t n = bodies.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& b = bodies[i];
+    if (b.inverse_mass == 0.0) continue;
+    const Mat3 r = b.orientation.toRotationMatrix();
+    const Vec3 velocity = b.velocity + dt * (b.inverse_mass * b.force + gravity);
+    const Vec3 angular_velocity = angular_velocity_update<gyroscopic>(b, r, dt);
+    if constexpr (semi_implicit) {
+      b.velocity = velocity;
+      b.angular_velocity = angular_velocity;
+    }
+    b.position += dt * b.velocity;
+    b.orientation = rotate_by(b.orientation, b.angular_velocity, dt);
+    if constexpr (!semi_implicit) {
+      b.velocity = velocity;
+      b.angular_velocity = angular_velocity;
+    }
+    b.force = Vec3::Zero();
+    b.torque = Vec3::Zero();
+    if (!state_is_finite(b) && first_bad == all_finite) first_bad = i;
+  }
+  return first_bad;
+}
+
+template <bool semi_implicit>
+std::size_t euler_family_step(std::vector<Body>& bodies, const Vec3& gravity,
+                              GyroscopicTerm gyroscopic, double dt) {
+  switch (gyroscopic) {
+    case GyroscopicTerm::implicit:
+      return euler_family_loop<semi_implicit, GyroscopicTerm::implicit>(bodies, gravity, dt);
+    case GyroscopicTerm::explicit_:
+      return euler_family_loop<semi_implicit, GyroscopicTerm::explicit_>(bodies, gravity, dt);
+    case GyroscopicTerm::off:
+      break;
+  }
+  return euler_family_loop<semi_implicit, GyroscopicTerm::off>(bodies, gravity, dt);
+}
+
+// The time derivative of one body's state (the ODE in integrators.hpp). `q` is the raw stage
+// quaternion: its normalised rotation gives R, and q̇ = ½ (0, ω) ⊗ q uses it as it is, so the
+// quaternion is integrated as a plain 4-vector.
+struct Slope {
+  Vec3 velocity;          // ẋ
+  Vec4 orientation;       // q̇ (x, y, z, w coefficients, Eigen's order)
+  Vec3 acceleration;      // v̇
+  Vec3 angular_acceleration;  // ω̇
+};
+
+Slope slope(const Body& b, const Vec3& velocity, const Quat& q, const Vec3& angular_velocity,
+            const Vec3& force, const Vec3& torque, const Vec3& gravity) {
+  const Mat3 r = q.normalized().toRotationMatrix();
+  const Vec3 omega_body = r.transpose() * angular_velocity;
+  const Vec3 torque_body = r.transpose() * torque;
+  const Quat omega_quat(0.0, angular_velocity.x(), angular_velocity.y(), angular_velocity.z());
+  Slope k;
+  k.velocity = velocity;
+  k.orientation = 0.5 * (omega_quat * q).coeffs();
+  k.acceleration = b.inverse_mass * force + gravity;
+  k.angular_acceleration =
+      r * (b.inverse_inertia * (torque_body - omega_body.cross(b.inertia * omega_body)));
+  return k;
+}
+
+Quat add(const Quat& q, double scale, const Vec4& dq) {
+  Quat result;
+  result.coeffs() = q.coeffs() + scale * dq;
+  return result;
+}
+
+// RK4 of one body whose force and torque stay constant over the step: the slopes depend only
+// on (v, q, ω), so the four stages run in registers.
+void rk4_constant_forces(Body& b, const Vec3& gravity, double dt) {
+  const double half = 0.5 * dt;
+  const Vec3& v = b.velocity;
+  const Vec3& w = b.angular_velocity;
+  const Quat& q = b.orientation;
+  const Slope k1 = slope(b, v, q, w, b.force, b.torque, gravity);
+  const Slope k2 = slope(b, v + half * k1.acceleration, add(q, half, k1.orientation),
+                         w + half * k1.angular_acceleration, b.force, b.torque, gravity);
+  const Slope k3 = slope(b, v + half * k2.acceleration, add(q, half, k2.orientation),
+                         w + half * k2.angular_acceleration, b.force, b.torque, gravity);
+  const Slope k4 = slope(b, v + dt * k3.acceleration, add(q, dt, k3.orientation),
+                         w + dt * k3.angular_acceleration, b.force, b.torque, gravity);
+  const double sixth = dt / 6.0;
+  b.position += sixth * (k1.velocity + 2.0 * (k2.velocity + k3.velocity) + k4.velocity);
+  b.orientation = add(q, sixth, k1.orientation + 2.0 * (k2.orientation + k3.orientation) +
+                                    k4.orientation);
+  b.orientation.normalize();
+  b.velocity += sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) +
+                         k4.acceleration);
+  b.angular_velocity += sixth * (k1.angular_acceleration +
+                                 2.0 * (k2.angular_acceleration + k3.angular_acceleration) +
+                                 k4.angular_acceleration);
+  b.force = Vec3::Zero();
+  b.torque = Vec3::Zero();
+}
+
+// Writes base + h·(dx, dq, dv, dω) into the body as a stage (or final) state: the raw
+// quaternion goes to `stage_q`, the body gets it normalised; forces are reset to the ones
+// applied before the step (the caller zeroes them after the last stage).
+void write_state(Body& b, const BodyState& base, double h, const Vec3& dx, const Vec4& dq,
+                 const Vec3& dv, const Vec3& dw, Quat& stage_q) {
+  b.position = base.position + h * dx;
+  b.velocity = base.velocity + h * dv;
+  b.angular_velocity = base.angular_velocity + h * dw;
+  stage_q = add(base.orientation, h, dq);
+  b.orientation = stage_q.normalized();
+  b.force = base.force;
+  b.torque = base.torque;
+}
+
+// One stage of the staged RK4: the slope at the state the bodies hold is added to the
+// weighted sum, then the next stage's state base + c·dt·slope is written into the bodies, or
+// after the fourth stage the final state base + dt/6 · sum.
+void rk4_stage(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws, int stage,
+               double dt) {
+  static constexpr double weights[] = {1.0, 2.0, 2.0, 1.0};
+  static constexpr double next_offsets[] = {0.5, 0.5, 1.0};
+  const double weight = weights[stage];
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (b.inverse_mass == 0.0) continue;
+    const Slope k = slope(b, b.velocity, ws.stage_q[i], b.angular_velocity, b.force, b.torque,
+                          gravity);
+    BodyState& sum = ws.sum[i];
+    sum.position += weight * k.velocity;
+    sum.orientation.coeffs() += weight * k.orientation;
+    sum.velocity += weight * k.acceleration;
+    sum.angular_velocity += weight * k.angular_acceleration;
+    if (stage < 3)
+      write_state(b, ws.base[i], next_offsets[stage] * dt, k.velocity, k.orientation,
+                  k.acceleration, k.angular_acceleration, ws.stage_q[i]);
+    else {
+      write_state(b, ws.base[i], dt / 6.0, sum.position, sum.orientation.coeffs(), sum.velocity,
+                  sum.angular_velocity, ws.stage_q[i]);
+      b.force = Vec3::Zero();
+      b.torque = Vec3::Zero();
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<Integrator> parse_integrator(std::string_view name) {
+  return parse_name<3, Integrator>(integrator_names, name);
+}
+
+std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name) {
+  return parse_name<3, GyroscopicTerm>(gyroscopic_names, name);
+}
+
+Quat rotate_by(const Quat& q, const Vec3& omega_world, double dt) {
+  const Vec3 theta = dt * omega_world;
+  const double angle = theta.norm();
+  // sin(angle/2)/angle, by its Taylor series 1/2 − angle²/48 near 0 (error < angle⁴/3840).
+  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
+  const Quat rotation(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
+  Quat result = rotation * q;
+  result.normalize();
+  return result;
+}
+
+Vec3 implicit_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, double dt) {
+  const Vec3 momentum = inertia * omega_body;
+  const Mat3 jacobian = inertia + dt * (skew(omega_body) * inertia - skew(momentum));
+  return omega_body - jacobian.inverse() * (dt * omega_body.cross(momentum));
+}
+
+std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, GyroscopicTerm gyroscopic,
+                       double dt) {
+  return euler_family_step<false>(bodies, gravity, gyroscopic, dt);
+}
+
+std::size_t semi_implicit_euler_step(std::vector<Body>& bodies, const Vec3& gravity,
+                                     GyroscopicTerm gyroscopic, double dt) {
+  return euler_family_step<true>(bodies, gravity, gyroscopic, dt);
+}
+
+std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, double dt,
+                     Rk4Workspace& ws, const std::function<void(double t)>& evaluate_forces) {
+  std::size_t first_bad = all_finite;
+  if (!evaluate_forces) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      Body& b = bodies[i];
+      if (b.inverse_mass == 0.0) continue;
+      rk4_constant_forces(b, gravity, dt);
+      if (!state_is_finite(b) && first_bad == all_finite) first_bad = i;
+    }
+    return first_bad;
+  }
+  const std::size_t n = bodies.size();
+  ws.base.resize(n);
+  ws.stage_q.resize(n);
+  ws.sum.resize(n);
+  const BodyState zero{Vec3::Zero(), Quat(0, 0, 0, 0), Vec3::Zero(), Vec3::Zero(),
+                       Vec3::Zero(), Vec3::Zero()};
+  for (std::size_t i = 0; i < n; ++i) {
+    ws.base[i] = state_of(bodies[i]);
+    ws.stage_q[i] = bodies[i].orientation;
+    ws.sum[i] = zero;
+  }
+  static constexpr double stage_times[] = {0.0, 0.5, 0.5, 1.0};
+  for (int stage = 0; stage < 4; ++stage) {
+    evaluate_forces(t + stage_times[stage] * dt);
+    rk4_stage(bodies, gravity, ws, stage, dt);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!state_is_finite(bodies[i]) && first_bad == all_finite) first_bad = i;
+  return first_bad;
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,122 @@
+// Time integrators for a set of rigid bodies, one free function per method (STYLE.md 7).
+//
+// The state of a body is y = (x, q, v, ω): COM position, orientation quaternion, COM velocity,
+// angular velocity (world). Its ODE is the Newton-Euler system
+//   ẋ = v,   q̇ = ½ (0, ω) ⊗ q,   v̇ = F/m + g,   ω̇ = I_w⁻¹ (τ − ω × I_w ω),   I_w = R I Rᵀ
+// (/work/shared/seeds/002_* "Newton-Euler Equations" and "Torque-Free Motion"; 003_* "Solving
+// Angular Equations in 3D" for q̇ = ½ ω q). F and τ are what has been accumulated in each
+// body's force and torque; gravity g is added here to every dynamic body as an acceleration.
+// Static bodies (inverse mass 0) never move. Each integrator consumes the accumulators: after
+// the step every force and torque is zero.
+//
+// Every integrator returns the index of the first body whose new state is not finite (or
+// `all_finite`), so the world can refuse the step and name the body. Nothing here allocates
+// except RK4's workspace, which grows to the number of bodies once and is then reused.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "engine/body.hpp"
+
+namespace rigidlab {
+
+enum class Integrator { euler, semi_implicit, rk4 };
+// How the Euler family treats the gyroscopic torque −ω × I ω. (`explicit` is a keyword.)
+enum class GyroscopicTerm { implicit, explicit_, off };
+
+// The user-facing names, in enum order.
+inline constexpr const char* integrator_names[] = {"euler", "semi_implicit", "rk4"};
+inline constexpr const char* gyroscopic_names[] = {"implicit", "explicit", "off"};
+std::optional<Integrator> parse_integrator(std::string_view name);
+std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name);
+
+inline constexpr std::size_t all_finite = static_cast<std::size_t>(-1);
+
+// The part of a body that a step changes.
+struct BodyState {
+  Vec3 position;
+  Quat orientation;
+  Vec3 velocity;
+  Vec3 angular_velocity;
+  Vec3 force;
+  Vec3 torque;
+};
+inline BodyState state_of(const Body& b) {
+  return {b.position, b.orientation, b.velocity, b.angular_velocity, b.force, b.torque};
+}
+inline void set_state(Body& b, const BodyState& s) {
+  b.position = s.position;
+  b.orientation = s.orientation;
+  b.velocity = s.velocity;
+  b.angular_velocity = s.angular_velocity;
+  b.force = s.force;
+  b.torque = s.torque;
+}
+// True when position, orientation, velocity and angular velocity are all finite.
+inline bool state_is_finite(const Body& b) {
+  const double sum = (b.position - b.position).sum() +
+                     (b.orientation.coeffs() - b.orientation.coeffs()).sum() +
+                     (b.velocity - b.velocity).sum() +
+                     (b.angular_velocity - b.angular_velocity).sum();
+  return sum == 0.0;
+}
+
+// ---- building blocks (exposed for tests and benchmarks) -------------------------------------
+
+// The exact rotation of angle |ω| dt about ω applied to q: exp(½ dt (0, ω)) ⊗ q, normalised.
+// This is the orientation update of 002_* "Newton-Euler Equations" (A' = Rotate(ω Δt) A) with
+// ω held constant over the step; unlike q + ½ ω q dt (003_*) it has no first-order norm drift.
+Quat rotate_by(const Quat& q, const Vec3& omega_world, double dt);
+
+// One Newton step on the implicit gyroscopic update in the body frame,
+//   f(ω') = I (ω' − ω) + dt ω' × I ω' = 0,   Jacobian J = I + dt (ω̂ I − (I ω)^),
+//   ω' ≈ ω − J⁻¹ (dt ω × I ω),
+// as in /work/shared/seeds/001_* "update_rigid_body_state" (after E. Catto, "Numerical Methods",
+// GDC 2015). Backward Euler on Euler's equations dissipates a little energy instead of gaining
+// it, so a spinning body does not blow up at game time steps. ω and the result in rad/s, body
+// frame; `inertia` the body-frame tensor.
+Vec3 implicit_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, double dt);
+
+// ---- the integrators ------------------------------------------------------------------------
+
+// Explicit (forward) Euler on the whole state: every right-hand side at the start of the step,
+//   x' = x + dt v,  q' = Rotate(dt ω) q,  v' = v + dt (F/m + g),  ω' = ω + dt ω̇
+// with ω̇ per `gyroscopic` (see angular_velocity_update in the .cpp). Order 1; gains energy on
+// an oscillator. 003_* "Explicit Euler", 002_* "Newton-Euler Equations".
+std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, GyroscopicTerm gyroscopic,
+                       double dt);
+
+// Semi-implicit (symplectic) Euler: velocities first, then positions from the new velocities,
+//   v' = v + dt (F/m + g),  ω' = ω + dt ω̇,  x' = x + dt v',  q' = Rotate(dt ω') q.
+// Order 1, energy of an oscillator bounded (Hairer, Lubich, Wanner, "Geometric Numerical
+// Integration" I.1). This is the update of 002_* ("p' = p + fΔt ... x' = x + vΔt") and of the
+// table in 003_* "Explicit Euler".
+std::size_t semi_implicit_euler_step(std::vector<Body>& bodies, const Vec3& gravity,
+                                     GyroscopicTerm gyroscopic, double dt);
+
+// Scratch storage of rk4_step, kept by the world so a step does not allocate.
+struct Rk4Workspace {
+  std::vector<BodyState> base;   // y_n and the forces applied before the step
+  std::vector<Quat> stage_q;     // un-normalised stage quaternions (4-vectors)
+  std::vector<BodyState> sum;    // k1 + 2 k2 + 2 k3 + k4 (position = ẋ, orientation = q̇, ...)
+};
+
+// Classical fourth-order Runge-Kutta on the whole state y = (x, q, v, ω) with the ODE above
+// (003_* "Fourth-Order Runge-Kutta"); the quaternion is integrated as a 4-vector with
+// q̇ = ½ (0, ω) ⊗ q and normalised once at the end of the step; the gyroscopic term is always
+// included. Order 4.
+//
+// `evaluate_forces(t)` is called at every stage, after the stage state has been written into
+// the bodies (orientation normalised) and their force and torque reset to what was applied
+// before the step; it adds the state-dependent forces (springs, drag, user callbacks). When it
+// is empty the forces are constant over the step and every body is integrated on its own in
+// one pass. Exceptions from evaluate_forces propagate; the bodies then hold a stage state and
+// the caller restores them.
+std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, double dt,
+                     Rk4Workspace& workspace, const std::function<void(double t)>& evaluate_forces);
+
+}  // namespace rigidlab

@@ -1,0 +1,254 @@
+#include "engine/world.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rigidlab {
+
+// ---- BodyStore ------------------------------------------------------------------------------
+
+BodyStore::Id BodyStore::insert(const Body& b) {
+  Id id;
+  if (!free_ids_.empty()) {
+    id = free_ids_.back();
+    free_ids_.pop_back();
+  } else {
+    id = static_cast<Id>(index_of_.size());
+    index_of_.push_back(npos);
+  }
+  index_of_[id] = static_cast<std::uint32_t>(bodies_.size());
+  bodies_.push_back(b);
+  ids_.push_back(id);
+  return id;
+}
+
+Body BodyStore::erase(Id id) {
+  const std::size_t index = index_of_[id];
+  Body b = bodies_[index];
+  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
+  ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(index));
+  for (std::size_t i = index; i < ids_.size(); ++i) index_of_[ids_[i]] = static_cast<std::uint32_t>(i);
+  index_of_[id] = npos;
+  free_ids_.push_back(id);
+  return b;
+}
+
+// ---- World ----------------------------------------------------------------------------------
+
+namespace {
+
+std::string number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.14g", x);
+  return buffer;
+}
+
+void require_not_stepping(const World& w, const char* what) {
+  if (w.stepping())
+    throw std::logic_error(std::string("cannot ") + what +
+                           " during a step (force callbacks may only apply forces)");
+}
+
+}  // namespace
+
+// Marks the world as stepping and snapshots every body; unless commit() is called, the
+// destructor (reached by a normal return or by any exception, a Lua error included) puts the
+// bodies and the time back. RAII rather than catch-and-rethrow, so nothing is swallowed.
+class World::StepGuard {
+ public:
+  explicit StepGuard(World& w) : world_(w), time_(w.time_) {
+    world_.store_->stepping_ = true;
+    const std::vector<Body>& bodies = world_.bodies();
+    world_.snapshot_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) world_.snapshot_[i] = state_of(bodies[i]);
+  }
+  ~StepGuard() {
+    world_.store_->stepping_ = false;
+    if (committed_) return;
+    std::vector<Body>& bodies = world_.bodies();
+    for (std::size_t i = 0; i < bodies.size(); ++i) set_state(bodies[i], world_.snapshot_[i]);
+    world_.time_ = time_;
+  }
+  StepGuard(const StepGuard&) = delete;
+  StepGuard& operator=(const StepGuard&) = delete;
+  void commit() { committed_ = true; }
+
+ private:
+  World& world_;
+  double time_;
+  bool committed_ = false;
+};
+
+World::World()
+    : store_(std::make_shared<BodyStore>()),
+      gravity_(0.0, -9.81, 0.0),
+      stage_forces_([this](double t) { evaluate_forces(t); }) {
+  store_->world_ = this;
+}
+
+World::~World() { store_->world_ = nullptr; }
+
+void World::set_gravity(const Vec3& g) {
+  if (!is_finite(g)) throw std::invalid_argument("gravity must be finite");
+  gravity_ = g;
+}
+
+void World::set_substeps(int n) {
+  if (n < 1 || n > max_substeps)
+    throw std::invalid_argument("substeps must be an integer from 1 to " +
+                                std::to_string(max_substeps) + ", got " + std::to_string(n));
+  substeps_ = n;
+}
+
+BodyStore::Id World::add(const Body& b) {
+  require_not_stepping(*this, "add a body");
+  if (!state_is_finite(b) || !is_finite(b.force) || !is_finite(b.torque))
+    throw std::invalid_argument("the body's state must be finite");
+  return store_->insert(b);
+}
+
+Body World::remove(BodyStore::Id id) {
+  require_not_stepping(*this, "remove a body");
+  const std::size_t index = store_->index_of(id);
+  auto renumber = [index](std::size_t& i) {
+    if (i != no_body && i > index) --i;
+  };
+  std::vector<Spring> springs;
+  for (Spring s : springs_) {
+    if (s.a == index || s.b == index) continue;
+    renumber(s.a);
+    renumber(s.b);
+    springs.push_back(s);
+  }
+  springs_.swap(springs);
+  std::vector<Drag> drags;
+  for (Drag d : drags_) {
+    if (d.body == index) continue;
+    renumber(d.body);
+    drags.push_back(d);
+  }
+  drags_.swap(drags);
+  return store_->erase(id);
+}
+
+void World::add_spring(const Spring& s) {
+  require_not_stepping(*this, "add a spring");
+  const std::size_t n = bodies().size();
+  if (s.a >= n || (s.b != no_body && s.b >= n))
+    throw std::invalid_argument("spring attached to a body that is not in this world");
+  const std::string problem = spring_problem(s);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  springs_.push_back(s);
+}
+
+void World::add_drag(const Drag& d) {
+  require_not_stepping(*this, "add drag");
+  if (d.body >= bodies().size())
+    throw std::invalid_argument("drag on a body that is not in this world");
+  const std::string problem = drag_problem(d);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  drags_.push_back(d);
+}
+
+void World::add_force(ForceCallback callback) {
+  require_not_stepping(*this, "add a force");
+  if (!callback) throw std::invalid_argument("the force callback is empty");
+  callbacks_.push_back(std::move(callback));
+}
+
+bool World::has_force_elements() const {
+  return !springs_.empty() || !drags_.empty() || !callbacks_.empty();
+}
+
+// 000_* "Particle system": at each evaluation sum every force acting on each body. The
+// accumulators already hold what was applied before the step.
+void World::evaluate_forces(double t) {
+  time_ = t;
+  std::vector<Body>& b = bodies();
+  for (const Spring& s : springs_) apply_spring(b, s);
+  for (const Drag& d : drags_) apply_drag(b, d);
+  // By index: a callback cannot add callbacks (add_force refuses during a step), but a
+  // reference into the vector must not be held across a call that might throw.
+  for (std::size_t i = 0; i < callbacks_.size(); ++i) callbacks_[i](*this, t);
+}
+
+// One substep from t to t + dt with the chosen integrator (STYLE.md 7: a switch on the enum).
+std::size_t World::integrate(double t, double dt) {
+  switch (integrator_) {
+    case Integrator::euler:
+      if (has_force_elements()) evaluate_forces(t);
+      return euler_step(bodies(), gravity_, gyroscopic_, dt);
+    case Integrator::semi_implicit:
+      if (has_force_elements()) evaluate_forces(t);
+      return semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt);
+    case Integrator::rk4:
+      break;
+  }
+  static const std::function<void(double)> no_forces;
+  return rk4_step(bodies(), gravity_, t, dt, rk4_,
+                  has_force_elements() ? stage_forces_ : no_forces);
+}
+
+void World::step(double dt) {
+  if (!std::isfinite(dt) || !(dt > 0.0))
+    throw std::invalid_argument("dt must be finite and > 0, got " + number(dt));
+  require_not_stepping(*this, "step the world");
+  StepGuard guard(*this);
+  const double t0 = time_;
+  const double h = dt / substeps_;
+  std::vector<Body>& bodies = this->bodies();
+  for (int s = 0; s < substeps_; ++s) {
+    if (s > 0) {  // the integrators consumed the forces applied before the step: restore them
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        bodies[i].force = snapshot_[i].force;
+        bodies[i].torque = snapshot_[i].torque;
+      }
+    }
+    const std::size_t bad = integrate(t0 + s * h, h);
+    if (bad != all_finite) throw_non_finite(bad, t0, t0 + dt);
+  }
+  time_ = t0 + dt;
+  guard.commit();
+}
+
+void World::throw_non_finite(std::size_t index, double t0, double t1) const {
+  const Body& b = bodies()[index];
+  const char* what = !is_finite(b.position)           ? "position"
+                     : !is_finite(b.orientation)      ? "orientation"
+                     : !is_finite(b.velocity)         ? "velocity"
+                                                      : "angular velocity";
+  throw StepError("body " + std::to_string(index + 1) + " of " +
+                      std::to_string(bodies().size()) + " would get a non-finite " + what +
+                      " in the step from t = " + number(t0) + " s to t = " + number(t1) +
+                      " s; the step was undone (the world is at t = " + number(t0) + " s)",
+                  index, t0);
+}
+
+double World::kinetic_energy() const {
+  double sum = 0.0;
+  for (const Body& b : bodies()) sum += rigidlab::kinetic_energy(b);
+  return sum;
+}
+
+double World::potential_energy() const {
+  double sum = 0.0;
+  for (const Body& b : bodies()) sum += gravity_potential_energy(b, gravity_);
+  for (const Spring& s : springs_) sum += spring_potential_energy(bodies(), s);
+  return sum;
+}
+
+Vec3 World::linear_momentum() const {
+  Vec3 sum = Vec3::Zero();
+  for (const Body& b : bodies()) sum += rigidlab::linear_momentum(b);
+  return sum;
+}
+
+// 002_* "Momentum and inertia": L about a point = Σ r × m v (orbital) + I ω (spin about COM).
+Vec3 World::angular_momentum(const Vec3& about) const {
+  Vec3 sum = Vec3::Zero();
+  for (const Body& b : bodies())
+    sum += (b.position - about).cross(rigidlab::linear_momentum(b)) + rigidlab::angular_momentum(b);
+  return sum;
+}
+
+}  // namespace rigidlab
