@@ -58,8 +58,8 @@ freshly computed velocity to move the position is the semi-implicit (also called
 symplectic) Euler method. Textbook explicit Euler moves the position with the OLD
 velocity, the one from the start of the step. The difference matters, as the next step
 shows. rigidlab calls the slides' update method = "semi_implicit".]],
-      formula = "vₙ = vₙ₋₁ + a·Δt,   rₙ = rₙ₋₁ + vₙ·Δt   (the slides label this explicit Euler;\n" ..
-                "it is semi-implicit Euler)",
+      formula = "vₙ = vₙ₋₁ + a·Δt,   rₙ = rₙ₋₁ + vₙ·Δt\n" ..
+                "(the slides label this explicit Euler; it is semi-implicit Euler)",
       run = function(ctx)
         local trajectory = car("semi_implicit", slides_dt)
         local slides_r = {0, 10, 30, 60, 100, 150, 210, 280, 360, 450, 550}  -- 003's table
@@ -85,8 +85,8 @@ finishing at 450 m, 50 m short. The two Euler variants miss by the same amount i
 opposite directions: one uses the velocity at the end of each step, the other the velocity
 at its start, while the truth is the velocity in the middle. Each column also matches the
 closed form of its own update, which you get by summing an arithmetic series.]],
-      formula = "explicit:       rₙ = rₙ₋₁ + vₙ₋₁·Δt,  vₙ = vₙ₋₁ + a·Δt   ⇒ rₙ = a·Δt²·n(n−1)/2\n" ..
-                "semi-implicit:  vₙ = vₙ₋₁ + a·Δt,  rₙ = rₙ₋₁ + vₙ·Δt     ⇒ rₙ = a·Δt²·n(n+1)/2",
+      formula = "explicit:       rₙ = rₙ₋₁ + vₙ₋₁·Δt, vₙ = vₙ₋₁ + a·Δt ⇒ rₙ = a·Δt²·n(n−1)/2\n" ..
+                "semi-implicit:  vₙ = vₙ₋₁ + a·Δt, rₙ = rₙ₋₁ + vₙ·Δt   ⇒ rₙ = a·Δt²·n(n+1)/2",
       run = function(ctx)
         local explicit = car("euler", slides_dt)
         local semi = car("semi_implicit", slides_dt)

@@ -87,7 +87,8 @@ it exactly.]],
         for i = 1, steps + 1 do
           local n = i - 1
           worst_rk4 = math.max(worst_rk4, (rk4.x[i] - exact(n * dt)):norm())
-          worst_explicit = math.max(worst_explicit, (explicit.x[i] - explicit_closed_form(n)):norm())
+          worst_explicit = math.max(worst_explicit,
+                                    (explicit.x[i] - explicit_closed_form(n)):norm())
           worst_semi = math.max(worst_semi, (semi.x[i] - semi_implicit_closed_form(n)):norm())
         end
         ctx:expect("RK4: largest distance from the parabola over all 31 samples (m)",

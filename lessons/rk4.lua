@@ -94,7 +94,8 @@ ode.step also offers two second-order methods, midpoint and Heun, which land in 
 
 We accept a measured order within 0.05 of the theory, taken where the steps are small
 enough for the leading error term to dominate: n = 20 → 40 for RK4 (smaller steps would
-bring its error down toward the level where rounding makes the ratio noisy), n = 80 → 160 for the others.]],
+bring its error down toward the level where rounding makes the ratio noisy), n = 80 → 160
+for the others.]],
       formula = "error ≈ C·Δtᵖ   ⇒   p ≈ log₂(error(Δt) / error(Δt/2))",
       run = function(ctx)
         local methods = {"euler", "midpoint", "heun", "rk4"}
