@@ -109,5 +109,29 @@ it exactly.]],
                    {15, 15, 15})
       end,
     },
+    {
+      title = "The same throw in a rigid-body world",
+      text = [[
+A full rigidlab world does the same arithmetic for the centre of mass of every body. We
+throw a small ball (a body.sphere) in worlds with gravity −9.8 m/s² and each of the three
+integrators: after 30 steps of 0.1 s they land on the same three heights as above, 4.37 m
+(explicit), 1.43 m (semi-implicit, the world's default) and the exact 2.9 m (RK4).]],
+      formula = "y(3 s): exact 2.9 m, explicit 2.9 + 1.47, semi-implicit 2.9 − 1.47",
+      run = function(ctx)
+        local t_end = steps * dt
+        local want = {euler = explicit_closed_form(steps),
+                      semi_implicit = semi_implicit_closed_form(steps), rk4 = exact(t_end)}
+        for _, method in ipairs({"euler", "semi_implicit", "rk4"}) do
+          local w = world{gravity = gravity, integrator = method}
+          local ball = w:add(body.sphere{mass = 0.2, radius = 0.05, position = start,
+                                         velocity = launch})
+          w:step(dt, steps)
+          ctx:show(method .. ": position at 3 s (m)", ball.position)
+          ctx:expect(method .. ": the closed form", ball.position, want[method], 1e-12)
+          ctx:expect(method .. ": velocity g·t + v₀", ball.velocity, launch + gravity * t_end,
+                     1e-12)
+        end
+      end,
+    },
   },
 }
