@@ -116,5 +116,28 @@ written out in four lines of Lua right in this lesson. They agree to rounding.]]
                    {abs = 1e-12})
       end,
     },
+    {
+      title = "The same frame in a rigidlab world",
+      text = [[
+A rigidlab world runs exactly this loop for all its bodies. Gravity is built in (the
+default g = (0, −9.81, 0) m/s²), and any other force is added by a function the world
+calls at the start of each step, here the field and the drag evaluated at the body's
+current position and velocity. One step of 0.1 s with the default semi-implicit
+integrator must land the 2 kg ball where our hand calculation did.]],
+      formula = "w:add_force(fn): fn applies −k·x − c·v;  w:step(Δt)",
+      run = function(ctx)
+        local w = world{}
+        local ball = w:add(body.sphere{mass = mass, radius = 0.1, position = x0, velocity = v0})
+        w:add_force(function()
+          ball:apply_force(field_force(ball.position) + drag_force(ball.velocity))
+        end)
+        w:step(dt)
+        ctx:show("world gravity (m/s²)", w.gravity)
+        ctx:show("v after one step (m/s)", ball.velocity)
+        ctx:show("x after one step (m)", ball.position)
+        ctx:expect("v₁ = (2.725, −1.381, 0)", ball.velocity, vec3(2.725, -1.381, 0), 1e-12)
+        ctx:expect("x₁ = (1.2725, 1.8619, 0)", ball.position, vec3(1.2725, 1.8619, 0), 1e-12)
+      end,
+    },
   },
 }
