@@ -189,29 +189,37 @@ std::size_t World::integrate(double t, double dt) {
                   has_force_elements() ? stage_forces_ : no_forces);
 }
 
-void World::step(double dt) {
+void World::step(double dt, long count, const std::function<void()>& between_steps) {
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::invalid_argument("dt must be finite and > 0, got " + number(dt));
+  if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
   require_not_stepping(*this, "step the world");
   StepGuard guard(*this);
-  const double t0 = time_;
+  const double call_start = time_;
   const double h = dt / substeps_;
   std::vector<Body>& bodies = this->bodies();
-  for (int s = 0; s < substeps_; ++s) {
-    if (s > 0) {  // the integrators consumed the forces applied before the step: restore them
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        bodies[i].force = snapshot_[i].force;
-        bodies[i].torque = snapshot_[i].torque;
+  double t = call_start;
+  for (long k = 0; k < count; ++k) {
+    for (int s = 0; s < substeps_; ++s) {
+      // The integrators consume the accumulators; forces applied before the call act during
+      // every substep of the first step.
+      if (k == 0 && s > 0) {
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+          bodies[i].force = snapshot_[i].force;
+          bodies[i].torque = snapshot_[i].torque;
+        }
       }
+      const std::size_t bad = integrate(t + s * h, h);
+      if (bad != all_finite) throw_non_finite(bad, t, t + dt, call_start);
     }
-    const std::size_t bad = integrate(t0 + s * h, h);
-    if (bad != all_finite) throw_non_finite(bad, t0, t0 + dt);
+    t += dt;
+    time_ = t;
+    if (between_steps && k + 1 < count) between_steps();
   }
-  time_ = t0 + dt;
   guard.commit();
 }
 
-void World::throw_non_finite(std::size_t index, double t0, double t1) const {
+void World::throw_non_finite(std::size_t index, double t0, double t1, double call_start) const {
   const Body& b = bodies()[index];
   const char* what = !is_finite(b.position)           ? "position"
                      : !is_finite(b.orientation)      ? "orientation"
@@ -220,7 +228,8 @@ void World::throw_non_finite(std::size_t index, double t0, double t1) const {
   throw StepError("body " + std::to_string(index + 1) + " of " +
                       std::to_string(bodies().size()) + " would get a non-finite " + what +
                       " in the step from t = " + number(t0) + " s to t = " + number(t1) +
-                      " s; the step was undone (the world is at t = " + number(t0) + " s)",
+                      " s; nothing was changed (the world is still at t = " +
+                      number(call_start) + " s)",
                   index, t0);
 }
 

@@ -61,13 +61,13 @@ class BodyStore {
 };
 
 // Raised by World::step when the new state of a body is not finite. The world is then exactly
-// as it was before that step. body_index is 0-based; the message counts from 1, as Lua does.
+// as it was before the call. body_index is 0-based; the message counts from 1, as Lua does.
 class StepError : public std::runtime_error {
  public:
   StepError(const std::string& message, std::size_t body_index, double time)
       : std::runtime_error(message), body_index(body_index), time(time) {}
   std::size_t body_index;
-  double time;  // s, the start of the refused step (the world's time now)
+  double time;  // s, the start of the step that failed
 };
 
 // A user force: called with the world and the time t (s) at every force evaluation (once per
@@ -112,13 +112,16 @@ class World {
   const std::vector<Drag>& drags() const { return drags_; }
 
   // ---- time ----
-  // Advances by dt (s, finite and > 0) in substeps() equal substeps with the chosen integrator;
-  // then clears every force and torque accumulator (forces applied before the step act during
-  // all its substeps and stages). Throws StepError if any body's state becomes non-finite,
-  // std::logic_error when called during a step (from a force callback), and propagates what a
-  // callback throws; in every failure the bodies, their accumulators and the time are exactly
-  // as before the call. While stepping, bodies hold intermediate (stage) states.
-  void step(double dt);
+  // Advances `count` steps of dt (s, finite and > 0), each in substeps() equal substeps with
+  // the chosen integrator. Forces applied before the call act during the whole first step
+  // (all its substeps and stages) and are then cleared, as if step(dt) were called `count`
+  // times. `between_steps`, if given, is called after every step but the last (the Lua
+  // binding polls for Ctrl-C there). Throws StepError if any body's state would become
+  // non-finite, std::logic_error when called during a step (from a force callback), and
+  // propagates what a callback throws; after any failure the bodies, their accumulators and
+  // the time are exactly as before the call. While stepping, bodies hold intermediate (stage)
+  // states and store().stepping() is true.
+  void step(double dt, long count = 1, const std::function<void()>& between_steps = {});
   double time() const { return time_; }  // s; during a step, the time of the current stage
   bool stepping() const { return store_->stepping_; }
 
@@ -135,7 +138,8 @@ class World {
   bool has_force_elements() const;
   void evaluate_forces(double t);
   std::size_t integrate(double t, double dt);
-  [[noreturn]] void throw_non_finite(std::size_t index, double t0, double t1) const;
+  [[noreturn]] void throw_non_finite(std::size_t index, double t0, double t1,
+                                     double call_start) const;
 
   std::shared_ptr<BodyStore> store_;
   Vec3 gravity_;

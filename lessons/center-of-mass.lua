@@ -9,6 +9,15 @@ local particles = {
   {mass = 3, pos = vec3(1, 2, 1), velocity = vec3(0, 0, -1)},
 }
 
+-- Two point masses on the x axis, through inertia.points; prints and returns mass and COM.
+local function pair(ctx, m1, x1, m2, x2)
+  local mass, com = inertia.points{{mass = m1, pos = vec3(x1, 0, 0)},
+                                   {mass = m2, pos = vec3(x2, 0, 0)}}
+  ctx:show("total mass (kg)", mass)
+  ctx:show("COM (m)", com)
+  return mass, com
+end
+
 -- The particles as inertia.points wants them: {mass =, pos =} only.
 local function point_masses()
   local list = {}
@@ -47,10 +56,7 @@ rigidlab's inertia.points computes the total mass and this weighted average for 
 of point masses.]],
       formula = "x_com = (m₁x₁ + m₂x₂)/(m₁ + m₂),   in general  COM = (1/m)·Σ mᵢ pᵢ",
       run = function(ctx)
-        local mass, com = inertia.points{{mass = 3, pos = vec3(0, 0, 0)},
-                                         {mass = 1, pos = vec3(4, 0, 0)}}
-        ctx:show("total mass (kg)", mass)
-        ctx:show("COM (m)", com)
+        local mass, com = pair(ctx, 3, 0, 1, 4)
         ctx:expect("m = 3 + 1", mass, 4)
         ctx:expect("x_com = (3·0 + 1·4)/(3 + 1) = 1", com, vec3((3 * 0 + 1 * 4) / (3 + 1), 0, 0))
       end,
@@ -64,10 +70,7 @@ from the heavy mass. This is why, for the Earth and a thrown ball, we can treat 
 as fixed: their common centre of mass is, for all purposes, the Earth's own.]],
       formula = "x_com = (1000·0 + 1·1.001)/(1000 + 1) = 0.001 m",
       run = function(ctx)
-        local mass, com = inertia.points{{mass = 1000, pos = vec3(0, 0, 0)},
-                                         {mass = 1, pos = vec3(1.001, 0, 0)}}
-        ctx:show("total mass (kg)", mass)
-        ctx:show("COM (m)", com)
+        local _, com = pair(ctx, 1000, 0, 1, 1.001)
         ctx:show("distance to the heavy mass (m)", com.x)
         ctx:show("distance to the light mass (m)", 1.001 - com.x)
         ctx:expect("x_com = 1.001/1001 = 0.001 m", com, vec3(0.001, 0, 0), {abs = 1e-15})

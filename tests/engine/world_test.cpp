@@ -21,6 +21,13 @@ Body ball(const Vec3& position = Vec3::Zero()) {
   return b;
 }
 
+Body tumbling_ball() {
+  Body b = make_box_body(2.0, Vec3(1, 2, 3));
+  b.angular_velocity = Vec3(1, 2, 0.5);
+  b.velocity = Vec3(0, 3, 0);
+  return b;
+}
+
 void expect_same_state(const Body& a, const Body& b) {
   EXPECT_EQ(a.position, b.position);
   EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
@@ -322,13 +329,49 @@ TEST(Step, NonFiniteStateIsRefusedAndUndone) {
       EXPECT_EQ(e.time, 0.1);
       EXPECT_EQ(std::string(e.what()),
                 "body 2 of 2 would get a non-finite position in the step from t = 0.1 s to "
-                "t = 1000.1 s; the step was undone (the world is at t = 0.1 s)");
+                "t = 1000.1 s; nothing was changed (the world is still at t = 0.1 s)");
     }
     expect_same_state(w.bodies()[0], before0);
     expect_same_state(w.bodies()[1], before1);
     EXPECT_EQ(w.time(), 0.1);
     EXPECT_FALSE(w.stepping());
   }
+}
+
+// A failure in the k-th of n steps undoes the whole call; the error names the failing step.
+TEST(Step, FailureInALaterStepUndoesTheWholeCall) {
+  World w;
+  w.set_gravity(Vec3(1e305, 0, 0));
+  Body b = ball();
+  b.velocity = Vec3(1, 0, 0);
+  w.add(b);
+  apply_force(w.bodies()[0], Vec3(0, 1, 0));
+  const Body before = w.bodies()[0];
+  int calls = 0;
+  try {
+    w.step(1.0, 100, [&calls] { ++calls; });
+    ADD_FAILURE() << "no error";
+  } catch (const StepError& e) {
+    EXPECT_EQ(e.body_index, 0u);
+    EXPECT_GT(e.time, 0.5);  // v grows by 1e305 per step: x overflows after a few steps
+    EXPECT_EQ(calls, static_cast<int>(e.time));
+  }
+  expect_same_state(w.bodies()[0], before);
+  EXPECT_EQ(w.time(), 0.0);
+}
+
+TEST(Step, ManyStepsEqualRepeatedSingleSteps) {
+  World a, b;
+  for (World* w : {&a, &b}) {
+    w->set_integrator(Integrator::rk4);
+    w->add(tumbling_ball());
+    w->add_drag(Drag{0, 0.3, 0.2});
+    apply_force(w->bodies()[0], Vec3(5, 0, 0));
+  }
+  a.step(0.01, 30);
+  for (int i = 0; i < 30; ++i) b.step(0.01);
+  expect_same_state(a.bodies()[0], b.bodies()[0]);
+  EXPECT_EQ(a.time(), b.time());
 }
 
 TEST(Step, ThrowingCallbackLeavesTheWorldAsBefore) {

@@ -1,0 +1,39 @@
+// The Lua body object, shared by the binding files that take bodies (world, collide).
+//
+// Ownership: a body userdata is a handle, {shared_ptr<BodyStore>, id}. A lone body has a store
+// of its own; w:add(b) moves the body into the world's store (contiguous, for the step loops)
+// and repoints the handle; w:remove(b) moves it back into a new store of its own. The handle
+// keeps its store alive, so a body stays valid whatever the collector does: bodies in a world
+// are also referenced from the world's userdata (so w:bodies() returns the same objects), and
+// a body whose world was collected keeps that world's store alive and stays readable.
+#pragma once
+
+#include <lua.hpp>
+
+#include <cstdint>
+#include <memory>
+
+#include "engine/world.hpp"
+
+namespace rigidlab::lua {
+
+struct BodyHandle {
+  std::shared_ptr<BodyStore> store;
+  BodyStore::Id id;
+  Body& body() const { return store->get(id); }
+};
+
+// The handle of the body at `index`, or nullptr when it is not a body.
+BodyHandle* test_body(lua_State* L, int index);
+// The handle, or a "body expected, got <type>" argument error.
+BodyHandle& check_body_handle(lua_State* L, int arg);
+// The body itself. The reference is valid until a body is added to or removed from its store.
+inline Body& check_body(lua_State* L, int arg) { return check_body_handle(L, arg).body(); }
+// A new Lua body holding a copy of b in a store of its own.
+BodyHandle& push_new_body(lua_State* L, const Body& b);
+
+// Raises "cannot <what> during world:step (force callbacks may only apply forces)" when the
+// body's world is stepping: only apply_force and apply_torque make sense at an RK4 stage.
+void check_not_stepping(lua_State* L, const BodyHandle& handle, const char* what);
+
+}  // namespace rigidlab::lua

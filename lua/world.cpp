@@ -1,0 +1,572 @@
+// world: bodies, gravity, springs, drag, force callbacks and a time integrator (engine/world.hpp).
+//
+// The world userdata holds the engine World (placement-new, destroyed by __gc) and two user
+// values: 1 = the list of its body objects, in the order of the engine's body vector (so
+// w:bodies() and error messages can name bodies by index and return the same objects),
+// 2 = the list of force callback functions. Body objects hold the world's BodyStore by
+// shared_ptr (lua/body.hpp), so they stay valid after the world is collected.
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+#include "lua/binding.hpp"
+#include "lua/body.hpp"
+#include "lua/modules.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+const char world_metatable_key = 0;
+inline constexpr std::uint64_t world_tag = 0x776f'726c'6472'6c62ULL;
+constexpr int bodies_slot = 1;
+constexpr int callbacks_slot = 2;
+// w:step(dt, n): n is bounded so a typo cannot start a run of years; long runs can be split.
+constexpr lua_Integer max_steps_per_call = 100'000'000;
+// Body-steps between two polls of the Lua hooks (Ctrl-C, the lesson checker's limits).
+constexpr std::size_t poll_interval = 4096;
+
+struct LuaWorld {
+  World world;
+  lua_State* running = nullptr;  // the thread running w:step, for the force callbacks
+};
+using WorldBox = Tagged<LuaWorld>;
+static_assert(alignof(WorldBox) <= 8, "Lua userdata is only 8-byte aligned");
+
+LuaWorld& check_world(lua_State* L, int arg) {
+  LuaWorld* w = test_tagged<LuaWorld>(L, arg, world_tag);
+  if (w == nullptr) type_error(L, arg, "world");
+  return *w;
+}
+
+// Runs an engine call, turning std::invalid_argument / std::logic_error into a Lua error
+// naming the running function (raised outside the catch, STYLE.md 4).
+template <class F>
+void call_engine(lua_State* L, F&& f) {
+  std::string message;
+  try {
+    f();
+    return;
+  } catch (const std::invalid_argument& e) {
+    message = e.what();
+  } catch (const std::logic_error& e) {
+    message = e.what();
+  }
+  function_error(L, "%s", message.c_str());
+}
+
+template <std::size_t N, class Enum>
+Enum check_option(lua_State* L, int arg, const char* const (&names)[N], const char* what,
+                  bool in_table) {
+  const bool is_string = lua_type(L, -1) == LUA_TSTRING;
+  if (is_string)
+    for (std::size_t i = 0; i < N; ++i)
+      if (std::strcmp(lua_tostring(L, -1), names[i]) == 0) return static_cast<Enum>(i);
+  std::string choices;
+  for (std::size_t i = 0; i < N; ++i) choices += std::string(i ? ", " : "") + "'" + names[i] + "'";
+  const std::string got =
+      is_string ? "'" + std::string(lua_tostring(L, -1)) + "'" : luaL_typename(L, -1);
+  if (in_table)
+    arg_error(L, arg, "field '%s' must be one of %s, got %s", what, choices.c_str(), got.c_str());
+  luaL_error(L, "world.%s must be one of %s, got %s", what, choices.c_str(), got.c_str());
+  return Enum{};
+}
+
+// A value as error messages show it: numbers as Lua prints them but with %.14g for floats
+// (1e+12, not 1000000000000.0), anything else by luaL_tolstring. Pushes the string.
+const char* shown_value(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TNUMBER && !lua_isinteger(L, index))
+    return lua_pushstring(L, format_number(lua_tonumber(L, index)).c_str());
+  return luaL_tolstring(L, index, nullptr);
+}
+
+// The substeps value on top of the stack.
+int check_substeps(lua_State* L, int arg, bool in_table) {
+  lua_Integer n = 0;
+  const bool integer = lua_type(L, -1) == LUA_TNUMBER && lua_isinteger(L, -1);
+  if (integer) n = lua_tointeger(L, -1);
+  if (!integer || n < 1 || n > World::max_substeps) {
+    const char* got = shown_value(L, -1);
+    if (in_table)
+      arg_error(L, arg, "field 'substeps' must be an integer from 1 to %d, got %s",
+                World::max_substeps, got);
+    luaL_error(L, "world.substeps must be an integer from 1 to %d, got %s", World::max_substeps,
+               got);
+  }
+  return static_cast<int>(n);
+}
+
+// ---- constructor -----------------------------------------------------------------------------
+
+int world_call(lua_State* L) {
+  lua_remove(L, 1);  // the world table itself
+  if (lua_isnone(L, 1)) lua_newtable(L);
+  if (!lua_istable(L, 1)) type_error(L, 1, "table");
+  check_no_extra_args(L, 1);
+  static const char* const fields[] = {"gravity", "integrator", "gyroscopic", "substeps", nullptr};
+  check_fields(L, 1, fields);
+  const Vec3 gravity = field_vec3(L, 1, "gravity", Vec3(0, -9.81, 0), false);
+  Integrator integrator = Integrator::semi_implicit;
+  GyroscopicTerm gyroscopic = GyroscopicTerm::implicit;
+  int substeps = 1;
+  if (get_field(L, 1, "integrator") != LUA_TNIL)
+    integrator = check_option<3, Integrator>(L, 1, integrator_names, "integrator", true);
+  if (get_field(L, 1, "gyroscopic") != LUA_TNIL)
+    gyroscopic = check_option<3, GyroscopicTerm>(L, 1, gyroscopic_names, "gyroscopic", true);
+  if (get_field(L, 1, "substeps") != LUA_TNIL) substeps = check_substeps(L, 1, true);
+  lua_settop(L, 1);
+
+  void* memory = lua_newuserdatauv(L, sizeof(WorldBox), 2);
+  auto* box = new (memory) WorldBox{world_tag, {}};
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &world_metatable_key);
+  lua_setmetatable(L, -2);
+  lua_newtable(L);
+  lua_setiuservalue(L, -2, bodies_slot);
+  lua_newtable(L);
+  lua_setiuservalue(L, -2, callbacks_slot);
+  World& w = box->value.world;
+  w.set_gravity(gravity);
+  w.set_integrator(integrator);
+  w.set_gyroscopic(gyroscopic);
+  w.set_substeps(substeps);
+  return 1;
+}
+
+int world_gc(lua_State* L) {
+  auto* box = static_cast<WorldBox*>(lua_touserdata(L, 1));
+  if (box != nullptr && box->tag == world_tag) {
+    box->value.~LuaWorld();
+    box->tag = 0;
+  }
+  return 0;
+}
+
+// ---- bodies ----------------------------------------------------------------------------------
+
+// The handle of argument `arg`, which must be a body of this world; its 0-based index.
+std::size_t check_member(lua_State* L, LuaWorld& w, int arg, BodyHandle*& handle) {
+  handle = &check_body_handle(L, arg);
+  if (handle->store.get() != &w.world.store()) arg_error(L, arg, "the body is not in this world");
+  return w.world.store().index_of(handle->id);
+}
+
+int world_add(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  BodyHandle& handle = check_body_handle(L, 2);
+  check_no_extra_args(L, 2);
+  if (w.world.stepping()) function_error(L, "cannot add a body during world:step");
+  if (handle.store.get() == &w.world.store()) arg_error(L, 2, "the body is already in this world");
+  if (handle.store->world() != nullptr)
+    arg_error(L, 2, "the body is already in another world (remove it there first)");
+  // A lone body's own store, or the store of a world that was collected: move the body out.
+  BodyStore::Id id = 0;
+  call_engine(L, [&] { id = w.world.add(handle.body()); });
+  handle.store->erase(handle.id);
+  handle.store = w.world.shared_store();
+  handle.id = id;
+  lua_getiuservalue(L, 1, bodies_slot);
+  lua_pushvalue(L, 2);
+  lua_rawseti(L, -2, static_cast<lua_Integer>(w.world.bodies().size()));
+  lua_pop(L, 1);
+  lua_settop(L, 2);
+  return 1;
+}
+
+int world_remove(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  BodyHandle* handle = nullptr;
+  const std::size_t index = check_member(L, w, 2, handle);
+  check_no_extra_args(L, 2);
+  if (w.world.stepping()) function_error(L, "cannot remove a body during world:step");
+  auto own = std::make_shared<BodyStore>();
+  Body body;
+  call_engine(L, [&] { body = w.world.remove(handle->id); });
+  handle->id = own->insert(body);
+  handle->store = std::move(own);
+  // Shift the body objects after it down by one, as table.remove.
+  lua_getiuservalue(L, 1, bodies_slot);
+  const lua_Integer n = static_cast<lua_Integer>(w.world.bodies().size()) + 1;
+  for (lua_Integer i = static_cast<lua_Integer>(index) + 1; i < n; ++i) {
+    lua_rawgeti(L, -1, i + 1);
+    lua_rawseti(L, -2, i);
+  }
+  lua_pushnil(L);
+  lua_rawseti(L, -2, n);
+  return 0;
+}
+
+int world_bodies(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  const lua_Integer n = static_cast<lua_Integer>(w.world.bodies().size());
+  lua_getiuservalue(L, 1, bodies_slot);
+  lua_createtable(L, static_cast<int>(n), 0);
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, -2, i);
+    lua_rawseti(L, -2, i);
+  }
+  return 1;
+}
+
+// ---- force elements --------------------------------------------------------------------------
+
+// Field `name` of the table at 1, which must be a body of this world; its index, or no_body
+// when absent and not required.
+std::size_t field_member(lua_State* L, LuaWorld& w, const char* name, bool required) {
+  if (get_field(L, 2, name) == LUA_TNIL) {
+    lua_pop(L, 1);
+    if (required) arg_error(L, 2, "field '%s' is required", name);
+    return no_body;
+  }
+  BodyHandle* handle = test_body(L, -1);
+  if (handle == nullptr) {
+    const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
+                                                                         : luaL_typename(L, -1);
+    arg_error(L, 2, "field '%s' must be a body, got %s", name, got);
+  }
+  if (handle->store.get() != &w.world.store())
+    arg_error(L, 2, "field '%s' is a body that is not in this world (w:add it first)", name);
+  lua_pop(L, 1);
+  return w.world.store().index_of(handle->id);
+}
+
+double field_nonnegative(lua_State* L, const char* name, double fallback, bool required) {
+  const double x = field_finite(L, 2, name, fallback, required);
+  if (!(x >= 0.0)) arg_error(L, 2, "field '%s' must be >= 0, got %s", name, format_number(x).c_str());
+  return x;
+}
+
+int world_add_spring(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  if (!lua_istable(L, 2)) type_error(L, 2, "table");
+  check_no_extra_args(L, 2);
+  static const char* const fields[] = {"a", "a_point", "b", "b_point", "anchor", "k",
+                                       "damping", "rest_length", nullptr};
+  check_fields(L, 2, fields);
+  Spring s;
+  s.a = field_member(L, w, "a", true);
+  s.b = field_member(L, w, "b", false);
+  const bool has_anchor = get_field(L, 2, "anchor") != LUA_TNIL;
+  const bool has_b_point = get_field(L, 2, "b_point") != LUA_TNIL;
+  lua_pop(L, 2);
+  if (s.b == no_body && !has_anchor) arg_error(L, 2, "field 'b' (a body) or 'anchor' (a world point) is required");
+  if (s.b != no_body && has_anchor) arg_error(L, 2, "fields 'b' and 'anchor' exclude each other");
+  if (s.b == no_body && has_b_point) arg_error(L, 2, "field 'b_point' needs field 'b'");
+  if (s.a == s.b) arg_error(L, 2, "fields 'a' and 'b' must be different bodies");
+  s.a_point = field_vec3(L, 2, "a_point", Vec3::Zero(), false);
+  s.b_point = field_vec3(L, 2, "b_point", Vec3::Zero(), false);
+  s.anchor = field_vec3(L, 2, "anchor", Vec3::Zero(), false);
+  s.stiffness = field_nonnegative(L, "k", 0.0, true);
+  s.damping = field_nonnegative(L, "damping", 0.0, false);
+  s.rest_length = field_nonnegative(L, "rest_length", 0.0, false);
+  call_engine(L, [&] { w.world.add_spring(s); });
+  return 0;
+}
+
+int world_add_drag(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  if (!lua_istable(L, 2)) type_error(L, 2, "table");
+  check_no_extra_args(L, 2);
+  static const char* const fields[] = {"body", "linear", "angular", nullptr};
+  check_fields(L, 2, fields);
+  Drag d;
+  d.body = field_member(L, w, "body", true);
+  d.linear = field_nonnegative(L, "linear", 0.0, false);
+  d.angular = field_nonnegative(L, "angular", 0.0, false);
+  call_engine(L, [&] { w.world.add_drag(d); });
+  return 0;
+}
+
+// The world userdata is argument 1 of the running w:step on box->running: callbacks get it and
+// the stage time. A Lua error raised inside propagates (as a C++ exception, Lua being compiled
+// as C++) through World::step, which undoes the step.
+void call_lua_force(LuaWorld& box, lua_Integer index, double t) {
+  lua_State* L = box.running;
+  luaL_checkstack(L, 4, "force callback");
+  lua_getiuservalue(L, 1, callbacks_slot);
+  lua_rawgeti(L, -1, index);
+  lua_pushvalue(L, 1);
+  lua_pushnumber(L, t);
+  lua_call(L, 2, 0);
+  lua_pop(L, 1);
+}
+
+int world_add_force(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  if (lua_type(L, 2) != LUA_TFUNCTION) type_error(L, 2, "function");
+  check_no_extra_args(L, 2);
+  if (w.world.stepping()) function_error(L, "cannot add a force during world:step");
+  lua_getiuservalue(L, 1, callbacks_slot);
+  const lua_Integer index = static_cast<lua_Integer>(luaL_len(L, -1)) + 1;
+  lua_pushvalue(L, 2);
+  lua_rawseti(L, -2, index);
+  LuaWorld* box = &w;
+  call_engine(L, [&] {
+    w.world.add_force([box, index](World&, double t) { call_lua_force(*box, index, t); });
+  });
+  return 0;
+}
+
+// ---- stepping --------------------------------------------------------------------------------
+
+// Sets and restores the thread that runs the callbacks (RAII: errors unwind through here).
+class RunningState {
+ public:
+  RunningState(LuaWorld& w, lua_State* L) : world_(w), previous_(w.running) { w.running = L; }
+  ~RunningState() { world_.running = previous_; }
+  RunningState(const RunningState&) = delete;
+  RunningState& operator=(const RunningState&) = delete;
+
+ private:
+  LuaWorld& world_;
+  lua_State* previous_;
+};
+
+int world_step(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  const double dt = check_positive(L, 2, "dt");
+  lua_Integer n = 1;
+  if (!lua_isnoneornil(L, 3)) {
+    if (lua_type(L, 3) != LUA_TNUMBER) type_error(L, 3, "number");
+    if (!lua_isinteger(L, 3) || lua_tointeger(L, 3) < 1 || lua_tointeger(L, 3) > max_steps_per_call)
+      arg_error(L, 3, "n must be an integer from 1 to %d, got %s", int(max_steps_per_call),
+                shown_value(L, 3));
+    n = lua_tointeger(L, 3);
+  }
+  check_no_extra_args(L, 3);
+  if (w.world.stepping())
+    function_error(L, "cannot step the world from inside its own step (a force callback)");
+  lua_settop(L, 1);
+  lua_pushvalue(L, lua_upvalueindex(1));  // the poll function, index 2
+  // Run the (empty) poll function every few thousand body-steps: calling into Lua lets the
+  // hooks of Ctrl-C and of the lesson checker's time limit stop a long C loop.
+  const std::size_t steps_per_poll = std::max<std::size_t>(1, poll_interval / (w.world.bodies().size() + 1));
+  std::size_t since_poll = 0;
+  auto poll = [&] {
+    if (++since_poll < steps_per_poll) return;
+    since_poll = 0;
+    lua_pushvalue(L, 2);
+    lua_call(L, 0, 0);
+  };
+  RunningState running(w, L);
+  std::string message;
+  try {
+    w.world.step(dt, static_cast<long>(n), poll);
+    return 0;
+  } catch (const StepError& e) {
+    message = e.what();
+  } catch (const std::invalid_argument& e) {
+    message = e.what();
+  } catch (const std::logic_error& e) {
+    message = e.what();
+  }
+  function_error(L, "%s", message.c_str());
+  return 0;
+}
+
+// ---- totals ----------------------------------------------------------------------------------
+
+int world_kinetic_energy(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, w.world.kinetic_energy());
+  return 1;
+}
+
+int world_potential_energy(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, w.world.potential_energy());
+  return 1;
+}
+
+int world_energy(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  lua_pushnumber(L, w.world.energy());
+  return 1;
+}
+
+void push_finite_total(lua_State* L, const Vec3& v) {
+  if (!is_finite(v)) function_error(L, "result is not finite (overflow)");
+  push_vec3(L, v);
+}
+
+int world_linear_momentum(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  push_finite_total(L, w.world.linear_momentum());
+  return 1;
+}
+
+int world_angular_momentum(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  const Vec3 about = lua_isnoneornil(L, 2) ? Vec3::Zero() : check_vec3(L, 2);
+  check_no_extra_args(L, 2);
+  push_finite_total(L, w.world.angular_momentum(about));
+  return 1;
+}
+
+// ---- fields ----------------------------------------------------------------------------------
+
+int world_index(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
+  if (std::strcmp(key, "time") == 0) lua_pushnumber(L, w.world.time());
+  else if (std::strcmp(key, "gravity") == 0) push_vec3(L, w.world.gravity());
+  else if (std::strcmp(key, "integrator") == 0)
+    lua_pushstring(L, integrator_names[static_cast<int>(w.world.integrator())]);
+  else if (std::strcmp(key, "gyroscopic") == 0)
+    lua_pushstring(L, gyroscopic_names[static_cast<int>(w.world.gyroscopic())]);
+  else if (std::strcmp(key, "substeps") == 0) lua_pushinteger(L, w.world.substeps());
+  else {
+    lua_pushvalue(L, 2);
+    if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+    luaL_error(L, "world has no field '%s' (fields: time, gravity, integrator, gyroscopic, "
+                  "substeps; methods: see help(\"world\"))", luaL_tolstring(L, 2, nullptr));
+  }
+  return 1;
+}
+
+int world_newindex(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
+  const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
+  if (is("time")) luaL_error(L, "world.time is read-only (it advances with w:step)");
+  if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps"))
+    luaL_error(L, "world has no field '%s' to set (settable: gravity, integrator, gyroscopic, "
+                  "substeps)", luaL_tolstring(L, 2, nullptr));
+  if (w.world.stepping()) luaL_error(L, "cannot set world.%s during world:step", key);
+  lua_settop(L, 3);
+  if (is("gravity")) {
+    const Vec3* g = test_vec3(L, 3);
+    if (g == nullptr) {
+      const char* got = luaL_getmetafield(L, 3, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
+                                                                          : luaL_typename(L, 3);
+      luaL_error(L, "world.gravity: vec3 expected, got %s", got);
+    }
+    w.world.set_gravity(*g);
+  } else if (is("integrator")) {
+    w.world.set_integrator(check_option<3, Integrator>(L, 3, integrator_names, "integrator", false));
+  } else if (is("gyroscopic")) {
+    w.world.set_gyroscopic(
+        check_option<3, GyroscopicTerm>(L, 3, gyroscopic_names, "gyroscopic", false));
+  } else {
+    w.world.set_substeps(check_substeps(L, 3, false));
+  }
+  return 0;
+}
+
+int world_tostring(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  const std::size_t n = w.world.bodies().size();
+  lua_pushfstring(L, "world(%d bod%s, t=%s, %s)", static_cast<int>(n), n == 1 ? "y" : "ies",
+                  format_number(w.world.time()).c_str(),
+                  integrator_names[static_cast<int>(w.world.integrator())]);
+  return 1;
+}
+
+const Entry methods[] = {
+    {"add", world_add, "world:add", "w:add(b) -> b",
+     "Adds body b to the world and returns it. A body belongs to at most one world."},
+    {"remove", world_remove, "world:remove", "w:remove(b)",
+     "Removes body b; it keeps its state and can be added again. Springs and drag attached to\n"
+     "it are removed with it."},
+    {"bodies", world_bodies, "world:bodies", "w:bodies() -> {body, ...}",
+     "A new list of the world's bodies in the order they were added (error messages of\n"
+     "w:step name bodies by this index)."},
+    {"add_force", world_add_force, "world:add_force", "w:add_force(fn)",
+     "fn(w, t) is called at every force evaluation (once per substep for the Euler methods,\n"
+     "at each of the four stages of rk4, the bodies then holding the stage's state and\n"
+     "w.time = t) and applies forces with b:apply_force / b:apply_torque. An error in fn\n"
+     "stops w:step and leaves the world as before the call."},
+    {"add_spring", world_add_spring, "world:add_spring",
+     "w:add_spring{a =, a_point =, b =, b_point =, anchor =, k =, damping =, rest_length =}",
+     "A Hooke spring with a damper along its line, from a_point of body a (body coordinates,\n"
+     "default the COM) to b_point of body b, or to the world point `anchor` when there is no\n"
+     "b. Force on a: (k (L − rest_length) + damping · (relative velocity of the ends)·u) u,\n"
+     "u the unit vector from a's end to b's end; −that on b. k (N/m) required; damping\n"
+     "(N s/m) and rest_length (m) default 0, so by default the spring pulls the ends together."},
+    {"add_drag", world_add_drag, "world:add_drag", "w:add_drag{body =, linear =, angular =}",
+     "Linear drag on a body: F = −linear · v (N s/m), τ = −angular · ω (N m s). Default 0."},
+    {"kinetic_energy", world_kinetic_energy, "world:kinetic_energy", "w:kinetic_energy() -> number",
+     "Σ ½ m v² + ½ ω·I ω over the bodies (J)."},
+    {"potential_energy", world_potential_energy, "world:potential_energy",
+     "w:potential_energy() -> number",
+     "Gravity −Σ m g·x (zero at the world origin) plus springs Σ ½ k (L − rest_length)² (J)."},
+    {"energy", world_energy, "world:energy", "w:energy() -> number",
+     "Kinetic plus potential energy (J)."},
+    {"linear_momentum", world_linear_momentum, "world:linear_momentum",
+     "w:linear_momentum() -> vec3", "Σ m v (kg m/s)."},
+    {"angular_momentum", world_angular_momentum, "world:angular_momentum",
+     "w:angular_momentum([point]) -> vec3",
+     "Σ (x − point) × m v + I_world ω about the world point (default the origin) (kg m²/s)."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry metamethods[] = {
+    {"__newindex", world_newindex, "world.__newindex", "w.gravity = g",
+     "Sets gravity, integrator, gyroscopic or substeps."},
+    {"__tostring", world_tostring, "world.__tostring", "tostring(w)",
+     "Short form: world(3 bodies, t=1.5, semi_implicit)."},
+    {"__gc", world_gc, "world.__gc", "", "Releases the world; its bodies stay valid."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry index_entry[] = {
+    {"__index", world_index, "world.__index", "w.time, w:method()", "Fields and methods."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+// w:step takes the poll function as its upvalue.
+const Entry step_entry[] = {
+    {"step", world_step, "world:step", "w:step(dt [, n])",
+     "Advances the world by n steps (default 1) of dt seconds, each in `substeps` substeps,\n"
+     "with the world's integrator. Forces applied with b:apply_force before the call act\n"
+     "during the first step and are then cleared. If any body would get a non-finite state,\n"
+     "or a force callback raises an error, nothing is changed and the error names the body\n"
+     "(its index in w:bodies()) and the time. n is at most 100000000."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry call_entry[] = {
+    {"__call", world_call, "world", "world{gravity =, integrator =, gyroscopic =, substeps =} -> world",
+     "A world of rigid bodies. gravity (vec3, m/s²) default vec3(0, -9.81, 0);\n"
+     "integrator: \"euler\" (explicit: positions from the old velocities), \"semi_implicit\"\n"
+     "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
+     "order on the whole state, gyroscopic term included); gyroscopic, for the Euler methods:\n"
+     "\"implicit\" (default; one Newton step on ω × Iω per substep, stable), \"explicit\" (gains\n"
+     "energy) or \"off\"; substeps (default 1) per w:step(dt).\n"
+     "Fields: time (read-only), gravity, integrator, gyroscopic, substeps (read/write).\n"
+     "Methods: add, remove, bodies, add_force, add_spring, add_drag, step, kinetic_energy,\n"
+     "potential_energy, energy, linear_momentum, angular_momentum."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+// Registers the methods (w:step with the poll function) into the table at `table_index`.
+void register_methods(lua_State* L, int table_index) {
+  table_index = lua_absindex(L, table_index);
+  register_entries(L, table_index, methods);
+  if (luaL_loadstring(L, "return") != LUA_OK) lua_error(L);
+  register_entries(L, table_index, step_entry, 1);
+}
+
+}  // namespace
+
+void open_world(lua_State* L, int lib) {
+  new_metatable(L, "world", &world_metatable_key);
+  register_entries(L, -1, metamethods);
+  lua_newtable(L);  // methods, the upvalue of __index
+  register_methods(L, -1);
+  register_entries(L, -2, index_entry, 1);
+  lua_pop(L, 1);
+
+  lua_newtable(L);  // the callable `world` table
+  register_methods(L, -1);  // world.step(w, dt) works as w:step(dt)
+  lua_newtable(L);
+  register_entries(L, -1, call_entry);
+  lua_pushliteral(L, "world");
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  register_topic(L, -1, "world", call_entry[0].doc);
+  lua_setfield(L, lib, "world");
+}
+
+}  // namespace rigidlab::lua

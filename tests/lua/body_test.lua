@@ -1,0 +1,199 @@
+-- body from Lua: constructors against the closed-form tensors of a sphere and a box, derived
+-- quantities against hand-computed values, static bodies, and the exact text of the errors.
+local T = dofile("testing.lua")
+
+T.case("sphere and box carry their closed-form tensors and shapes", function()
+  local s = body.sphere{mass = 2, radius = 0.5, position = vec3(0, 1, 0)}
+  T.near(s.inertia, mat3.diag(0.2, 0.2, 0.2), 1e-15, "(2/5) m r²")
+  T.equal(s.mass, 2, "mass"); T.equal(s.inv_mass, 0.5, "inv_mass")
+  T.equal(s.shape, "sphere", "shape"); T.equal(s.radius, 0.5, "radius"); T.equal(s.size, nil, "size")
+  T.equal(s.static, false, "static")
+  T.equal(tostring(s), "body(sphere, m=2, pos=(0, 1, 0))", "tostring")
+  local b = body.box{mass = 12, size = vec3(1, 2, 3)}
+  T.near(b.inertia, mat3.diag(13, 10, 5), 1e-14, "m(h²+d²)/12, m(w²+d²)/12, m(w²+h²)/12")
+  T.near(b.inv_inertia, mat3.diag(1 / 13, 1 / 10, 1 / 5), 1e-15, "inv_inertia")
+  T.equal(b.shape, "box", "shape"); T.equal(b.size, vec3(1, 2, 3), "size"); T.equal(b.radius, nil, "radius")
+  local g = body{mass = 3, inertia = mat3.diag(1, 2, 2.5)}
+  T.equal(g.shape, "none", "no shape")
+  T.equal(tostring(g), "body(m=3, pos=(0, 0, 0))", "tostring without shape")
+end)
+
+T.case("state fields: defaults, writes, normalisation", function()
+  local b = body{mass = 1, inertia = mat3.identity()}
+  T.equal(b.position, vec3(), "position"); T.equal(b.velocity, vec3(), "velocity")
+  T.equal(b.orientation, quat.identity(), "orientation")
+  b.position = vec3(1, 2, 3); b.velocity = vec3(0, 1, 0); b.angular_velocity = vec3(0, 0, 2)
+  T.equal(b.position, vec3(1, 2, 3), "position written")
+  local v = b.velocity
+  v.x = 5  -- a copy: the body is unchanged
+  T.equal(b.velocity, vec3(0, 1, 0), "fields are values")
+  b.orientation = quat(2, 0, 0, 0)
+  T.equal(b.orientation, quat.identity(), "orientation normalised on write")
+  local c = body{mass = 1, inertia = mat3.identity(), orientation = quat(0, 0, 0, 3)}
+  T.equal(c.orientation, quat(0, 0, 0, 1), "orientation normalised in the constructor")
+end)
+
+T.case("derived quantities against hand-computed values", function()
+  local b = body{mass = 1, inertia = mat3.diag(1, 2, 3), position = vec3(1, 2, 3),
+    orientation = quat.axis_angle(vec3(0, 0, 1), math.pi / 2)}
+  T.near(b:world_inertia(), mat3.diag(2, 1, 3), 1e-14, "a quarter turn about z swaps Ixx, Iyy")
+  T.near(b:inv_world_inertia(), mat3.diag(0.5, 1, 1 / 3), 1e-14, "R I⁻¹ Rᵀ")
+  T.near(b:to_world(vec3(1, 0, 0)), vec3(1, 3, 3), 1e-15, "to_world")
+  T.near(b:to_local(vec3(1, 3, 3)), vec3(1, 0, 0), 1e-15, "to_local")
+  b.velocity = vec3(1, 0, 0); b.angular_velocity = vec3(0, 0, 2)
+  T.near(b:point_velocity(vec3(2, 2, 3)), vec3(1, 2, 0), 1e-15, "v + ω × r")
+  local s = body.sphere{mass = 2, radius = 1, velocity = vec3(3, 0, 0), angular_velocity = vec3(0, 0, 1)}
+  T.near(s:linear_momentum(), vec3(6, 0, 0), 1e-15, "m v")
+  T.near(s:angular_momentum(), vec3(0, 0, 0.8), 1e-15, "I ω")
+  T.near(s:kinetic_energy(), 0.5 * 2 * 9 + 0.5 * 0.8, 1e-14, "½ m v² + ½ I ω²")
+end)
+
+T.case("impulses change velocities now", function()
+  local s = body.sphere{mass = 2, radius = 1}  -- I = 0.8
+  s:apply_impulse(vec3(0, 4, 0), vec3(1, 0, 0))  -- r × j = (0, 0, 4)
+  T.near(s.velocity, vec3(0, 2, 0), 1e-15, "Δv = j/m")
+  T.near(s.angular_velocity, vec3(0, 0, 5), 1e-14, "Δω = I⁻¹ (r × j)")
+  s:apply_angular_impulse(vec3(0.8, 0, 0))
+  T.near(s.angular_velocity, vec3(1, 0, 5), 1e-14, "Δω = I⁻¹ h")
+  s:apply_impulse(vec3(2, 0, 0))
+  T.near(s.velocity, vec3(1, 2, 0), 1e-15, "at the COM by default")
+end)
+
+T.case("forces accumulate until the next step", function()
+  local w = world{gravity = vec3()}
+  local b = w:add(body.sphere{mass = 2, radius = 1})  -- I = 0.8
+  b:apply_force(vec3(4, 0, 0))
+  b:apply_force(vec3(0, 0, 0.4), vec3(0, 1, 0))  -- τ = (0,1,0) × (0,0,0.4) = (0.4, 0, 0)
+  b:apply_torque(vec3(0, 0.8, 0))
+  w:step(0.5)
+  T.near(b.velocity, vec3(1, 0, 0.1), 1e-15, "Δv = F dt / m")
+  T.near(b.angular_velocity, vec3(0.25, 0.5, 0), 1e-15, "Δω = I⁻¹ τ dt")
+  w:step(0.5)
+  T.near(b.velocity, vec3(1, 0, 0.1), 1e-15, "cleared after the step")
+end)
+
+T.case("static bodies", function()
+  for _, s in ipairs{body{mass = math.huge}, body{static = true}, body.sphere{radius = 1, static = true},
+                     body.box{size = vec3(1, 1, 1), mass = math.huge, position = vec3(0, -1, 0)}} do
+    T.equal(s.static, true, "static"); T.equal(s.inv_mass, 0, "inv_mass"); T.equal(s.mass, math.huge, "mass")
+    T.equal(s.inv_inertia, mat3.diag(0, 0, 0), "inv_inertia")
+    s:apply_impulse(vec3(1, 2, 3), vec3(1, 0, 0)); s:apply_angular_impulse(vec3(1, 0, 0))
+    s:apply_force(vec3(1, 0, 0))
+    T.equal(s.velocity, vec3(), "impulses do nothing"); T.equal(s.angular_velocity, vec3(), "no spin")
+    T.equal(s:kinetic_energy(), 0, "no energy"); T.equal(s:linear_momentum(), vec3(), "no momentum")
+    s.velocity = vec3()  -- zero is allowed
+  end
+  local w = world()
+  local floor = w:add(body.box{size = vec3(10, 1, 10), static = true})
+  w:step(0.1, 10)
+  T.equal(floor.position, vec3(), "a static body does not fall")
+  T.equal(tostring(floor), "body(box, static, pos=(0, 0, 0))", "tostring")
+end)
+
+T.case("constructor errors", function()
+  local I = mat3.identity()
+  T.fails(function() return body(5) end, "bad argument #1 to 'body' (table expected, got number)")
+  T.fails(function() return body{inertia = I} end,
+    "bad argument #1 to 'body' (field 'mass' is required (or static = true))")
+  T.fails(function() return body{mass = -1, inertia = I} end,
+    "bad argument #1 to 'body' (field 'mass' must be > 0, got -1)")
+  T.fails(function() return body{mass = 0/0, inertia = I} end,
+    "bad argument #1 to 'body' (field 'mass' must be finite or math.huge, got nan)")
+  T.fails(function() return body{mass = "1", inertia = I} end,
+    "bad argument #1 to 'body' (field 'mass' must be a number, got string)")
+  T.fails(function() return body{mass = 1} end, "bad argument #1 to 'body' (field 'inertia' is required)")
+  T.fails(function() return body{mass = 1, inertia = vec3(1, 1, 1)} end,
+    "bad argument #1 to 'body' (field 'inertia' must be a mat3, got vec3)")
+  T.fails(function() return body{mass = 1, inertia = mat3.diag(1, 1, 3)} end,
+    "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
+    .. "definite, A + B >= C): principal moments 1, 1, 3 violate A + B >= C (1 + 1 < 3 by 1))")
+  T.fails(function() return body{mass = 1, inertia = mat3(1, 0.5, 0, 0, 1, 0, 0, 0, 1)} end,
+    "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
+    .. "definite, A + B >= C): ")
+  T.fails(function() return body{mass = 1, inertia = mat3.diag(1, 1, -1)} end,
+    "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
+    .. "definite, A + B >= C): principal moments -1, 1, 1 are not all > 0")
+  T.fails(function() return body{mass = 1, inertia = I, colour = "red"} end,
+    "bad argument #1 to 'body' (unknown field 'colour' (fields are: mass, inertia, position, "
+    .. "orientation, velocity, angular_velocity, static))")
+  T.fails(function() return body{mass = 1, inertia = I, position = 3} end,
+    "bad argument #1 to 'body' (field 'position' must be a vec3, got number)")
+  T.fails(function() return body{mass = 1, inertia = I, orientation = vec3()} end,
+    "bad argument #1 to 'body' (field 'orientation' must be a quat, got vec3)")
+  T.fails(function() return body{mass = 1, inertia = I, orientation = quat(0, 0, 0, 0)} end,
+    "bad argument #1 to 'body' (field 'orientation' is the zero quaternion, which is not a rotation)")
+  T.fails(function() return body{mass = 2, static = true} end,
+    "bad argument #1 to 'body' (field 'mass' must be math.huge or absent for a static body, got 2)")
+  T.fails(function() return body{mass = math.huge, static = false} end,
+    "bad argument #1 to 'body' (mass = math.huge makes a static body, but field 'static' is false)")
+  T.fails(function() return body{static = 1} end,
+    "bad argument #1 to 'body' (field 'static' must be a boolean, got number)")
+  T.fails(function() return body{static = true, inertia = I} end,
+    "bad argument #1 to 'body' (field 'inertia' must be absent for a static body (its inertia is infinite))")
+  T.fails(function() return body{static = true, velocity = vec3(1, 0, 0)} end,
+    "bad argument #1 to 'body' (a static body cannot move: velocity and angular_velocity must be zero)")
+  T.fails(function() return body.sphere{mass = 1, radius = -1} end,
+    "bad argument #1 to 'body.sphere' (field 'radius' must be > 0, got -1)")
+  T.fails(function() return body.sphere{mass = 1} end,
+    "bad argument #1 to 'body.sphere' (field 'radius' is required)")
+  T.fails(function() return body.sphere{mass = 1, radius = 1, size = vec3(1, 1, 1)} end,
+    "bad argument #1 to 'body.sphere' (unknown field 'size'")
+  T.fails(function() return body.box{mass = 1, size = vec3(1, 0, 1)} end,
+    "bad argument #1 to 'body.box' (field 'size' must have every component > 0, got (1, 0, 1))")
+  T.fails(function() return body.box{mass = 1, size = 2} end,
+    "bad argument #1 to 'body.box' (field 'size' must be a vec3, got number)")
+  T.fails(function() return body.box{mass = -2, size = vec3(1, 1, 1)} end,
+    "bad argument #1 to 'body.box' (field 'mass' must be > 0, got -2)")
+end)
+
+T.case("field errors", function()
+  local b = body.sphere{mass = 1, radius = 1}
+  T.fails(function() b.mass = 2 end,
+    "body.mass is read-only (mass properties and shape are fixed when the body is made)")
+  T.fails(function() b.inertia = mat3.identity() end, "body.inertia is read-only")
+  T.fails(function() b.inv_mass = 1 end, "body.inv_mass is read-only")
+  T.fails(function() b.radius = 2 end, "body.radius is read-only")
+  T.fails(function() b.colour = 1 end,
+    "body has no field 'colour' to set (settable: position, orientation, velocity, angular_velocity)")
+  T.fails(function() return b.colour end, "body has no field 'colour' (fields: position, orientation")
+  T.fails(function() b.position = 1 end, "body.position: vec3 expected, got number")
+  T.fails(function() b.velocity = {1, 2, 3} end, "body.velocity: vec3 expected, got table")
+  T.fails(function() b.orientation = vec3(1, 0, 0) end, "body.orientation: quat expected, got vec3")
+  T.fails(function() b.orientation = quat(0, 0, 0, 0) end,
+    "body.orientation: the zero quaternion is not a rotation")
+  T.fails(function() b.position = vec3(0 / 0, 0, 0) end, "")  -- a vec3 cannot even hold NaN
+  local s = body{static = true}
+  T.fails(function() s.velocity = vec3(1, 0, 0) end,
+    "body.velocity of a static body must stay zero (it never moves)")
+  T.fails(function() s.angular_velocity = vec3(0, 1, 0) end,
+    "body.angular_velocity of a static body must stay zero (it never moves)")
+  T.equal(b.position, vec3(), "nothing changed")
+end)
+
+T.case("method errors", function()
+  local b = body.sphere{mass = 1, radius = 1}
+  T.fails(function() b:apply_force("up") end,
+    "bad argument #1 to 'body:apply_force' (vec3 expected, got string)")
+  T.fails(function() b:apply_force(vec3(), 5) end,
+    "bad argument #2 to 'body:apply_force' (vec3 expected, got number)")
+  T.fails(function() b:apply_impulse() end,
+    "bad argument #1 to 'body:apply_impulse' (vec3 expected, got no value)")
+  T.fails(function() b:apply_torque(vec3(), vec3()) end,
+    "bad argument #2 to 'body:apply_torque' (no more than 2 arguments expected, got 3)")
+  T.fails(function() return b:to_world() end,
+    "bad argument #1 to 'body:to_world' (vec3 expected, got no value)")
+  T.fails(function() return b.kinetic_energy(vec3()) end,
+    "bad argument #1 to 'body:kinetic_energy' (body expected, got vec3)")
+  T.fails(function() b:apply_force(vec3(1e308, 0, 0)); b:apply_force(vec3(1e308, 0, 0)) end,
+    "'body:apply_force': the accumulated force or torque would overflow")
+  T.fails(function() b:apply_impulse(vec3(1e308, 0, 0)); b:apply_impulse(vec3(1e308, 0, 0)) end,
+    "'body:apply_impulse': the impulse would make the velocity non-finite")
+end)
+
+T.case("help knows bodies", function()
+  T.equal(type(body.sphere), "function", "body.sphere")
+  T.equal(body.kinetic_energy(body.sphere{mass = 2, radius = 1, velocity = vec3(1, 0, 0)}), 1,
+    "methods are also functions of the body table")
+end)
+
+T.finish()
