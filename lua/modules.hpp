@@ -17,6 +17,7 @@ void open_plot(lua_State* L, int lib);
 void open_csv(lua_State* L, int lib);
 void open_motion(lua_State* L, int lib);
 void open_ode(lua_State* L, int lib);
+void open_collide(lua_State* L, int lib);
 void open_body(lua_State* L, int lib);
 void open_world(lua_State* L, int lib);
 

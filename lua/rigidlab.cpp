@@ -19,6 +19,7 @@ int open_library(lua_State* L) {
   open_csv(L, lib);
   open_motion(L, lib);
   open_ode(L, lib);
+  open_collide(L, lib);
   open_body(L, lib);
   open_world(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
