@@ -15,6 +15,25 @@ std::optional<Enum> parse_name(const char* const (&names)[N], std::string_view n
   return std::nullopt;
 }
 
+// rotate_by, here so the body loops inline it.
+inline Quat exact_rotation(const Quat& q, const Vec3& omega_world, double dt) {
+  const Vec3 theta = dt * omega_world;
+  const double angle = theta.norm();
+  // sin(angle/2)/angle, by its Taylor series 1/2 − angle²/48 near 0 (error < angle⁴/3840).
+  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
+  const Quat rotation(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
+  Quat result = rotation * q;
+  result.normalize();
+  return result;
+}
+
+// implicit_gyroscopic_step, here so the body loops inline it.
+inline Vec3 newton_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, double dt) {
+  const Vec3 momentum = inertia * omega_body;
+  const Mat3 jacobian = inertia + dt * (skew(omega_body) * inertia - skew(momentum));
+  return omega_body - jacobian.inverse() * (dt * omega_body.cross(momentum));
+}
+
 // ω' of the Euler family for one body, computed in the body frame where I is constant:
 // ω_b = Rᵀ ω, τ_b = Rᵀ τ, then back with R. The torque impulse dt I⁻¹ τ_b comes first, then
 //   implicit:  one Newton step on backward Euler for −ω × I ω (001_*, Catto GDC 2015);
@@ -30,52 +49,88 @@ Vec3 angular_velocity_update(const Body& b, const Mat3& r, double dt) {
   } else {
     omega_body += dt * (b.inverse_inertia * torque_body);
     if constexpr (gyroscopic == GyroscopicTerm::implicit)
-      omega_body = implicit_gyroscopic_step(b.inertia, omega_body, dt);
+      omega_body = newton_gyroscopic_step(b.inertia, omega_body, dt);
   }
   return r * omega_body;
 }
 
-// The Euler-family loop, with the gyroscopic treatment fixed at compile time so the body loop
-// has no switch. `semi_implicit` selects whether x and q use the new (true) or old velocities.
-template <bool semi_implicit, GyroscopicTerm gyroscopic>
-std::size_t euler_family_loop(std::vector<Body>& bodies, const Vec3& gravity, double dt) {
-  std::size_t first_bad = all_finite;
+// The sum of a body's state components: finite exactly when they all are (an infinity either
+// stays or meets its opposite and gives NaN), so 0 · sum is 0 for a finite state, else NaN.
+// Accumulating it costs a few additions per body and no branch; the index of the first bad
+// body is searched for only when the accumulated probe is not 0.
+double state_sum(const Body& b) {
+  return b.position.sum() + b.orientation.coeffs().sum() + b.velocity.sum() +
+         b.angular_velocity.sum();
+}
+
+std::size_t first_non_finite(const std::vector<Body>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!state_is_finite(bodies[i])) return i;
+  return all_finite;
+}
+
+// The Euler-family loop, with the gyroscopic treatment and the saving of the old state fixed
+// at compile time, so the body loop has no switch. `semi_implicit` selects whether x and q use
+// the new (true) or old velocities. The old state is saved from locals at the end of each
+// iteration: a store through save_to earlier could alias the body and force reloads.
+template <bool semi_implicit, GyroscopicTerm gyroscopic, bool save>
+std::size_t euler_family_loop(std::vector<Body>& bodies, const Vec3& gravity, double dt,
+                              BodyState* save_to) {
+  double probe = 0.0;  // becomes NaN when any new state component is NaN or infinite
   const std::size_t n = bodies.size();
   for (std::size_t i = 0; i < n; ++i) {
     Body& b = bodies[i];
-    if (b.inverse_mass == 0.0) continue;
-    const Mat3 r = b.orientation.toRotationMatrix();
-    const Vec3 velocity = b.velocity + dt * (b.inverse_mass * b.force + gravity);
-    const Vec3 angular_velocity = angular_velocity_update<gyroscopic>(b, r, dt);
-    if constexpr (semi_implicit) {
-      b.velocity = velocity;
-      b.angular_velocity = angular_velocity;
+    const BodyState old = state_of(b);
+    if (b.inverse_mass != 0.0) {
+      const Mat3 r = b.orientation.toRotationMatrix();
+      const Vec3 velocity = b.velocity + dt * (b.inverse_mass * b.force + gravity);
+      const Vec3 angular_velocity = angular_velocity_update<gyroscopic>(b, r, dt);
+      if constexpr (semi_implicit) {
+        b.velocity = velocity;
+        b.angular_velocity = angular_velocity;
+      }
+      b.position += dt * b.velocity;
+      b.orientation = exact_rotation(b.orientation, b.angular_velocity, dt);
+      if constexpr (!semi_implicit) {
+        b.velocity = velocity;
+        b.angular_velocity = angular_velocity;
+      }
+      b.force = Vec3::Zero();
+      b.torque = Vec3::Zero();
+      // Semi-implicit: x' = x + dt v' and q' = Rotate(dt ω') q are non-finite whenever v' or
+      // ω' is (inf·dt stays inf, sin(inf) is NaN), so x' and q' are enough to check.
+      if constexpr (semi_implicit)
+        probe += 0.0 * (b.position.sum() + b.orientation.coeffs().sum());
+      else
+        probe += 0.0 * state_sum(b);
     }
-    b.position += dt * b.velocity;
-    b.orientation = rotate_by(b.orientation, b.angular_velocity, dt);
-    if constexpr (!semi_implicit) {
-      b.velocity = velocity;
-      b.angular_velocity = angular_velocity;
-    }
-    b.force = Vec3::Zero();
-    b.torque = Vec3::Zero();
-    if (!state_is_finite(b) && first_bad == all_finite) first_bad = i;
+    if constexpr (save) save_to[i] = old;
   }
-  return first_bad;
+  return probe == 0.0 ? all_finite : first_non_finite(bodies);
+}
+
+template <bool semi_implicit, GyroscopicTerm gyroscopic>
+std::size_t euler_family_loop(std::vector<Body>& bodies, const Vec3& gravity, double dt,
+                              BodyState* save_to) {
+  return save_to != nullptr
+             ? euler_family_loop<semi_implicit, gyroscopic, true>(bodies, gravity, dt, save_to)
+             : euler_family_loop<semi_implicit, gyroscopic, false>(bodies, gravity, dt, save_to);
 }
 
 template <bool semi_implicit>
 std::size_t euler_family_step(std::vector<Body>& bodies, const Vec3& gravity,
-                              GyroscopicTerm gyroscopic, double dt) {
+                              GyroscopicTerm gyroscopic, double dt, BodyState* save_to) {
   switch (gyroscopic) {
     case GyroscopicTerm::implicit:
-      return euler_family_loop<semi_implicit, GyroscopicTerm::implicit>(bodies, gravity, dt);
+      return euler_family_loop<semi_implicit, GyroscopicTerm::implicit>(bodies, gravity, dt,
+                                                                        save_to);
     case GyroscopicTerm::explicit_:
-      return euler_family_loop<semi_implicit, GyroscopicTerm::explicit_>(bodies, gravity, dt);
+      return euler_family_loop<semi_implicit, GyroscopicTerm::explicit_>(bodies, gravity, dt,
+                                                                         save_to);
     case GyroscopicTerm::off:
       break;
   }
-  return euler_family_loop<semi_implicit, GyroscopicTerm::off>(bodies, gravity, dt);
+  return euler_family_loop<semi_implicit, GyroscopicTerm::off>(bodies, gravity, dt, save_to);
 }
 
 // The time derivative of one body's state (the ODE in integrators.hpp). `q` is the raw stage
@@ -192,45 +247,38 @@ std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name) {
 }
 
 Quat rotate_by(const Quat& q, const Vec3& omega_world, double dt) {
-  const Vec3 theta = dt * omega_world;
-  const double angle = theta.norm();
-  // sin(angle/2)/angle, by its Taylor series 1/2 − angle²/48 near 0 (error < angle⁴/3840).
-  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
-  const Quat rotation(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
-  Quat result = rotation * q;
-  result.normalize();
-  return result;
+  return exact_rotation(q, omega_world, dt);
 }
 
 Vec3 implicit_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, double dt) {
-  const Vec3 momentum = inertia * omega_body;
-  const Mat3 jacobian = inertia + dt * (skew(omega_body) * inertia - skew(momentum));
-  return omega_body - jacobian.inverse() * (dt * omega_body.cross(momentum));
+  return newton_gyroscopic_step(inertia, omega_body, dt);
 }
 
 std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, GyroscopicTerm gyroscopic,
-                       double dt) {
-  return euler_family_step<false>(bodies, gravity, gyroscopic, dt);
+                       double dt, BodyState* save_to) {
+  return euler_family_step<false>(bodies, gravity, gyroscopic, dt, save_to);
 }
 
 std::size_t semi_implicit_euler_step(std::vector<Body>& bodies, const Vec3& gravity,
-                                     GyroscopicTerm gyroscopic, double dt) {
-  return euler_family_step<true>(bodies, gravity, gyroscopic, dt);
+                                     GyroscopicTerm gyroscopic, double dt, BodyState* save_to) {
+  return euler_family_step<true>(bodies, gravity, gyroscopic, dt, save_to);
 }
 
 std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, double dt,
-                     Rk4Workspace& ws, const std::function<void(double t)>& evaluate_forces) {
+                     Rk4Workspace& ws, const std::function<void(double t)>& evaluate_forces,
+                     BodyState* save_to) {
   std::size_t first_bad = all_finite;
+  const std::size_t n = bodies.size();
   if (!evaluate_forces) {
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       Body& b = bodies[i];
+      if (save_to != nullptr) save_to[i] = state_of(b);
       if (b.inverse_mass == 0.0) continue;
       rk4_constant_forces(b, gravity, dt);
       if (!state_is_finite(b) && first_bad == all_finite) first_bad = i;
     }
     return first_bad;
   }
-  const std::size_t n = bodies.size();
   ws.base.resize(n);
   ws.stage_q.resize(n);
   ws.sum.resize(n);
@@ -238,6 +286,7 @@ std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, d
                        Vec3::Zero(), Vec3::Zero()};
   for (std::size_t i = 0; i < n; ++i) {
     ws.base[i] = state_of(bodies[i]);
+    if (save_to != nullptr) save_to[i] = ws.base[i];
     ws.stage_q[i] = bodies[i].orientation;
     ws.sum[i] = zero;
   }

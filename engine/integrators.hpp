@@ -10,7 +10,9 @@
 // the step every force and torque is zero.
 //
 // Every integrator returns the index of the first body whose new state is not finite (or
-// `all_finite`), so the world can refuse the step and name the body. Nothing here allocates
+// `all_finite`), so the world can refuse the step and name the body. Given `save_to` (an
+// array of bodies.size() states), each also writes every body's state before the step there,
+// in the same pass: the world's undo snapshot costs no extra sweep over memory. Nothing here allocates
 // except RK4's workspace, which grows to the number of bodies once and is then reused.
 #pragma once
 
@@ -88,7 +90,7 @@ Vec3 implicit_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, doubl
 // with ω̇ per `gyroscopic` (see angular_velocity_update in the .cpp). Order 1; gains energy on
 // an oscillator. 003_* "Explicit Euler", 002_* "Newton-Euler Equations".
 std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, GyroscopicTerm gyroscopic,
-                       double dt);
+                       double dt, BodyState* save_to = nullptr);
 
 // Semi-implicit (symplectic) Euler: velocities first, then positions from the new velocities,
 //   v' = v + dt (F/m + g),  ω' = ω + dt ω̇,  x' = x + dt v',  q' = Rotate(dt ω') q.
@@ -96,7 +98,8 @@ std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, Gyroscopi
 // Integration" I.1). This is the update of 002_* ("p' = p + fΔt ... x' = x + vΔt") and of the
 // table in 003_* "Explicit Euler".
 std::size_t semi_implicit_euler_step(std::vector<Body>& bodies, const Vec3& gravity,
-                                     GyroscopicTerm gyroscopic, double dt);
+                                     GyroscopicTerm gyroscopic, double dt,
+                                     BodyState* save_to = nullptr);
 
 // Scratch storage of rk4_step, kept by the world so a step does not allocate.
 struct Rk4Workspace {
@@ -117,6 +120,7 @@ struct Rk4Workspace {
 // one pass. Exceptions from evaluate_forces propagate; the bodies then hold a stage state and
 // the caller restores them.
 std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, double dt,
-                     Rk4Workspace& workspace, const std::function<void(double t)>& evaluate_forces);
+                     Rk4Workspace& workspace, const std::function<void(double t)>& evaluate_forces,
+                     BodyState* save_to = nullptr);
 
 }  // namespace rigidlab

@@ -51,31 +51,38 @@ void require_not_stepping(const World& w, const char* what) {
 
 }  // namespace
 
-// Marks the world as stepping and snapshots every body; unless commit() is called, the
-// destructor (reached by a normal return or by any exception, a Lua error included) puts the
-// bodies and the time back. RAII rather than catch-and-rethrow, so nothing is swallowed.
+// Marks the world as stepping; unless commit() is called, the destructor (reached by a normal
+// return or by any exception, a Lua error included) puts the bodies back as in the snapshot
+// and the time back. RAII rather than catch-and-rethrow, so nothing is swallowed. The snapshot
+// is taken here when `take_snapshot`, otherwise the first integrator pass writes it (no force
+// element can run, and throw, before that pass) and the world calls snapshot_taken().
 class World::StepGuard {
  public:
-  explicit StepGuard(World& w) : world_(w), time_(w.time_) {
+  StepGuard(World& w, bool take_snapshot) : world_(w), time_(w.time_) {
     world_.store_->stepping_ = true;
+    world_.snapshot_.resize(world_.bodies().size());
+    if (!take_snapshot) return;
     const std::vector<Body>& bodies = world_.bodies();
-    world_.snapshot_.resize(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i) world_.snapshot_[i] = state_of(bodies[i]);
+    has_snapshot_ = true;
   }
   ~StepGuard() {
     world_.store_->stepping_ = false;
     if (committed_) return;
+    world_.time_ = time_;
+    if (!has_snapshot_) return;
     std::vector<Body>& bodies = world_.bodies();
     for (std::size_t i = 0; i < bodies.size(); ++i) set_state(bodies[i], world_.snapshot_[i]);
-    world_.time_ = time_;
   }
   StepGuard(const StepGuard&) = delete;
   StepGuard& operator=(const StepGuard&) = delete;
+  void snapshot_taken() { has_snapshot_ = true; }
   void commit() { committed_ = true; }
 
  private:
   World& world_;
   double time_;
+  bool has_snapshot_ = false;
   bool committed_ = false;
 };
 
@@ -173,20 +180,20 @@ void World::evaluate_forces(double t) {
 }
 
 // One substep from t to t + dt with the chosen integrator (STYLE.md 7: a switch on the enum).
-std::size_t World::integrate(double t, double dt) {
+std::size_t World::integrate(double t, double dt, BodyState* save_to) {
   switch (integrator_) {
     case Integrator::euler:
       if (has_force_elements()) evaluate_forces(t);
-      return euler_step(bodies(), gravity_, gyroscopic_, dt);
+      return euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
     case Integrator::semi_implicit:
       if (has_force_elements()) evaluate_forces(t);
-      return semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt);
+      return semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
     case Integrator::rk4:
       break;
   }
   static const std::function<void(double)> no_forces;
   return rk4_step(bodies(), gravity_, t, dt, rk4_,
-                  has_force_elements() ? stage_forces_ : no_forces);
+                  has_force_elements() ? stage_forces_ : no_forces, save_to);
 }
 
 void World::step(double dt, long count, const std::function<void()>& between_steps) {
@@ -194,7 +201,10 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
     throw std::invalid_argument("dt must be finite and > 0, got " + number(dt));
   if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
   require_not_stepping(*this, "step the world");
-  StepGuard guard(*this);
+  // With force elements, forces are evaluated (and callbacks may throw) before the first
+  // integrator pass, so the snapshot comes first; without, that pass writes it.
+  const bool snapshot_in_pass = !has_force_elements();
+  StepGuard guard(*this, !snapshot_in_pass);
   const double call_start = time_;
   const double h = dt / substeps_;
   std::vector<Body>& bodies = this->bodies();
@@ -209,7 +219,10 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
           bodies[i].torque = snapshot_[i].torque;
         }
       }
-      const std::size_t bad = integrate(t + s * h, h);
+      const bool first_pass = k == 0 && s == 0;
+      const std::size_t bad =
+          integrate(t + s * h, h, first_pass && snapshot_in_pass ? snapshot_.data() : nullptr);
+      if (first_pass && snapshot_in_pass) guard.snapshot_taken();
       if (bad != all_finite) throw_non_finite(bad, t, t + dt, call_start);
     }
     t += dt;
@@ -221,10 +234,11 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
 
 void World::throw_non_finite(std::size_t index, double t0, double t1, double call_start) const {
   const Body& b = bodies()[index];
-  const char* what = !is_finite(b.position)           ? "position"
-                     : !is_finite(b.orientation)      ? "orientation"
-                     : !is_finite(b.velocity)         ? "velocity"
-                                                      : "angular velocity";
+  // Rates first: a non-finite velocity makes the position non-finite too.
+  const char* what = !is_finite(b.velocity)           ? "velocity"
+                     : !is_finite(b.angular_velocity) ? "angular velocity"
+                     : !is_finite(b.position)         ? "position"
+                                                      : "orientation";
   throw StepError("body " + std::to_string(index + 1) + " of " +
                       std::to_string(bodies().size()) + " would get a non-finite " + what +
                       " in the step from t = " + number(t0) + " s to t = " + number(t1) +

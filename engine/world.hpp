@@ -137,7 +137,7 @@ class World {
   class StepGuard;
   bool has_force_elements() const;
   void evaluate_forces(double t);
-  std::size_t integrate(double t, double dt);
+  std::size_t integrate(double t, double dt, BodyState* save_to);
   [[noreturn]] void throw_non_finite(std::size_t index, double t0, double t1,
                                      double call_start) const;
 

@@ -501,7 +501,11 @@ BodyHandle* test_body(lua_State* L, int index) { return test_tagged<BodyHandle>(
 
 BodyHandle& check_body_handle(lua_State* L, int arg) {
   BodyHandle* handle = test_body(L, arg);
-  if (handle == nullptr) type_error(L, arg, "body");
+  if (handle == nullptr) {
+    if (has_metatable(L, arg, &body_metatable_key))  // its __gc has run: used from a finaliser
+      arg_error(L, arg, "the body was garbage-collected (it is used from a finaliser)");
+    type_error(L, arg, "body");
+  }
   return *handle;
 }
 
