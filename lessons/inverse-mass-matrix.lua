@@ -147,8 +147,8 @@ computed with the mass along the normal alone, then a friction impulse along the
 direction. Because M⁻¹ couples the directions (its off-diagonal entries), the friction
 impulse disturbs the normal velocity it had just fixed: after one pass our corner moves
 into the ground again at about 1.1 m/s. Repeating the passes, each adding a small
-correction, converges to the same total impulse as the one 3×3 solve above, each pass shrinking the error about
-fourfold (after 40 passes it is below 1e-10 N·s; checked to 1e-9). This is the idea behind
+correction, converges to the same total impulse as the one 3×3 solve above, each pass cutting the error by a factor
+of about 1.8 (after 40 passes it is below 1e-10 N·s; checked to 1e-9). This is the idea behind
 000's "Sequential impulses". Friction 100 ensures Coulomb's limit never clips the friction
 impulse.]],
       formula = "pass k: J_k along n, then friction along the sliding direction;   Σ impulses → j",
