@@ -71,7 +71,8 @@ particle, having given away more momentum than it had, bounces back at 2 − 3.2
 A slip in 001: it writes vb' = vb − J/mb and then evaluates 0 + 3.2/4 = 0.8. The number is
 right, the sign in the formula is not: b receives +J (Newton's third law, Ja = −Jb), so
 vb' = vb + J/mb. With the minus sign as printed, b would move at −0.8 m/s, into a.]],
-      formula = "J = −2·(0 − 2)/(1/1 + 1/4) = 3.2,   va' = 2 − 3.2/1 = −1.2,   vb' = 0 + 3.2/4 = 0.8",
+      formula = "J = −2·(0 − 2)/(1/1 + 1/4) = 3.2\n" ..
+                "va' = 2 − 3.2/1 = −1.2,   vb' = 0 + 3.2/4 = 0.8",
       run = function(ctx)
         collide_and_check(ctx, 4, {J = 3.2, va = -1.2, vb = 0.8})
         ctx:show("vb' with the document's printed sign, vb − J/mb (m/s)", speed_b - 3.2 / 4)

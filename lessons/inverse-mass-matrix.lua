@@ -121,11 +121,14 @@ and this contact is a valid one.]],
                    box.velocity + box.angular_velocity:cross(r), 1e-12)
         ctx:show("M = (M⁻¹)⁻¹ (kg)", mass_matrix)
         ctx:show("j (N·s)", j)
-        ctx:say(string.format("j_y = %.4g N·s > 0: the ground pushes up, so this contact is valid.", j.y))
+        ctx:say(string.format("j_y = %.4g N·s > 0: the ground pushes up, so the contact is valid.",
+                              j.y))
         ctx:expect("j = −M(v_cm + ω×r) with M⁻¹ by hand", j,
-                   inverse_mass_by_hand(r, r):inverse() * -(box.velocity + box.angular_velocity:cross(r)),
+                   inverse_mass_by_hand(r, r):inverse() *
+                     -(box.velocity + box.angular_velocity:cross(r)),
                    1e-12)
-        local v_before, omega_before, t_before = box.velocity, box.angular_velocity, box:kinetic_energy()
+        local v_before, omega_before = box.velocity, box.angular_velocity
+        local t_before = box:kinetic_energy()
         box:apply_impulse(j, point)
         ctx:show("corner velocity after (m/s)", box:point_velocity(point))
         ctx:show("v_cm after (m/s)", box.velocity)
@@ -147,18 +150,18 @@ computed with the mass along the normal alone, then a friction impulse along the
 direction. Because M⁻¹ couples the directions (its off-diagonal entries), the friction
 impulse disturbs the normal velocity it had just fixed: after one pass our corner moves
 into the ground again at about 1.1 m/s. Repeating the passes, each adding a small
-correction, converges to the same total impulse as the one 3×3 solve above, each pass cutting the error by a factor
-of about 1.8 (after 40 passes it is below 1e-10 N·s; checked to 1e-9). This is the idea behind
-000's "Sequential impulses". Friction 100 ensures Coulomb's limit never clips the friction
-impulse.]],
+correction, converges to the same total impulse as the one 3×3 solve above, each pass
+cutting the error by a factor of about 1.8 (after 40 passes it is below 1e-10 N·s; checked
+to 1e-9). This is the idea behind 000's "Sequential impulses". Friction 100 ensures
+Coulomb's limit never clips the friction impulse.]],
       formula = "pass k: J_k along n, then friction along the sliding direction;   Σ impulses → j",
       run = function(ctx)
         local box = make_box()
         local r = orientation:rotate(corner)
-        local j = collide.inverse_mass_matrix(box, r, r):inverse() * (-box:point_velocity(box.position + r))
+        local v0 = box:point_velocity(box.position + r)
+        local j = collide.inverse_mass_matrix(box, r, r):inverse() * (-v0)
         local floor = body.box{static = true, size = vec3(10, 1, 10), position = vec3(0, -0.5, 0)}
         local up = vec3(0, 1, 0)
-        local v0 = box:point_velocity(box.position + r)
         local total, rows = vec3(0, 0, 0), {}
         for pass = 1, 40 do
           local point = box.position + r
@@ -168,7 +171,8 @@ impulse.]],
           if pass == 1 then
             local want = one_pass_by_hand(r, v0, up, 100)
             ctx:show("corner velocity after one pass (m/s)", box:point_velocity(point))
-            ctx:expect("one pass = normal, then friction, by hand", box:point_velocity(point), want, 1e-12)
+            ctx:expect("one pass = normal, then friction, by hand", box:point_velocity(point),
+                       want, 1e-12)
           end
           if pass == 1 or pass % 10 == 0 then
             rows[#rows + 1] = {pass, box:point_velocity(point):norm(), (total - j):norm()}

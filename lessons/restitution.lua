@@ -44,7 +44,8 @@ mass (ma·va + mb·vb)/(ma + mb), the "sticking together" case Appendix C starts
           rows[#rows + 1] = {e, J, va_after, vb_after, vb_after - va_after}
           ctx:expect("e = " .. e .. ": J = (1+e)·1.6", J, (1 + e) * 1.6)
           ctx:expect("e = " .. e .. ": separation speed = e·2", vb_after - va_after, e * (va - vb))
-          ctx:expect("e = " .. e .. ": momentum kept", ma * va_after + mb * vb_after, ma * va + mb * vb)
+          ctx:expect("e = " .. e .. ": momentum kept", ma * va_after + mb * vb_after,
+                     ma * va + mb * vb)
         end
         ctx:table({"e", "J (N·s)", "va' (m/s)", "vb' (m/s)", "vb' − va' (m/s)"}, rows)
         local _, stuck_a, stuck_b = collide.impulse_1d(ma, va, mb, vb, 0)
@@ -124,8 +125,10 @@ of mass and neither ball starts to spin.]],
                    -e * closing, 1e-12)
         local lost = before - a:kinetic_energy() - b:kinetic_energy()
         ctx:show("energy lost (J)", lost)
-        ctx:expect("energy lost = ½μ(1 − e²)(v_rel·N)²", lost, energy_lost(ma, mb, e, closing), 1e-12)
-        ctx:expect("no spin from a central impulse", a.angular_velocity, vec3(0, 0, 0), {abs = 1e-12})
+        ctx:expect("energy lost = ½μ(1 − e²)(v_rel·N)²", lost, energy_lost(ma, mb, e, closing),
+                   1e-12)
+        ctx:expect("no spin from a central impulse", a.angular_velocity, vec3(0, 0, 0),
+                   {abs = 1e-12})
       end,
     },
     {

@@ -53,7 +53,8 @@ turns it, and the term is sin²θ/m, which is the document's closing remark abou
 To build this in rigidlab, the rod is one body turning about its pivot: the pivot is a
 point of 1e30 kg (rigidlab's static bodies cannot turn at all, and 1/M = 1e-30 vanishes
 next to 1/m = 1 in double precision) with the particle's tensor from inertia.points.]],
-      formula = "(I⁻¹(r×N))×r·N = ((r×N)/(m r²))×r·N = (N/m)·N = 1/m   for r ⟂ N;   sin²θ/m in general",
+      formula = "(I⁻¹(r×N))×r·N = ((r×N)/(m r²))×r·N = (N/m)·N = 1/m   for r ⟂ N\n" ..
+                "(I⁻¹(r×N))×r·N = sin²θ/m   with θ the angle between r and N",
       run = function(ctx)
         local mass = 1
         local rows = {}
@@ -121,7 +122,9 @@ uniform plank of length L hit square at its end has 1/m + (L/2)²/(mL²/12) ≈ 
 length. And a body of fixed inertia hit ever farther from its centre (a ball on a long
 light stick) has a term r²/I that grows without bound: it is spun ever more easily, and
 the impulse goes to zero, not to the linear one.]],
-      formula = "ball on rod: r²/(m(r² + 0.4ρ²)) → 1/m;   plank: 1/m + 3L²/(m(L² + w²)) → 4/m;   fixed I: r²/I → ∞",
+      formula = "ball on a rod:   r²/(m(r² + 0.4ρ²)) → 1/m\n" ..
+                "plank at its end: 1/m + 3L²/(m(L² + w²)) → 4/m\n" ..
+                "fixed inertia:   r²/I → ∞",
       run = function(ctx)
         local m, rho, rows = 1, 0.1, {}
         for _, radius in ipairs({0.2, 1, 10, 1000}) do
@@ -167,7 +170,8 @@ rods of growing length with the particle at 2 m/s for 0.5 s (s = 1 m): the stray
 like 1/r, and at r = ∞ the rotation would be indistinguishable from straight-line motion.
 That is the sense in which 001's linear collision is a rotation about a point at infinity.
 (The stray is a difference of two numbers near r, so it is checked to 1e-9 m absolute.)]],
-      formula = "position after s: (r sin(s/r), −r cos(s/r)) from the pivot;   stray r(1 − cos(s/r)) ≈ s²/(2r)",
+      formula = "position after s: (r sin(s/r), −r cos(s/r)) from the pivot\n" ..
+                "sideways stray: r(1 − cos(s/r)) ≈ s²/(2r)",
       run = function(ctx)
         local speed, duration, dt = 2, 0.5, 0.01
         local s = speed * duration
@@ -175,7 +179,8 @@ That is the sense in which 001's linear collision is a rotation about a point at
         for _, radius in ipairs({1, 10, 100, 1000}) do
           local r = vec3(0, -radius, 0)
           local w = world{gravity = vec3(0, 0, 0)}
-          local rod = w:add(rod_body(1, r, {angular_velocity = r:cross(vec3(speed, 0, 0)) / radius ^ 2}))
+          local spin = r:cross(vec3(speed, 0, 0)) / radius ^ 2
+          local rod = w:add(rod_body(1, r, {angular_velocity = spin}))
           w:step(dt, math.floor(duration / dt + 0.5))
           local particle = rod:to_world(r)
           local angle = s / radius
