@@ -113,8 +113,12 @@ int world_call(lua_State* L) {
   int substeps = 1;
   if (get_field(L, 1, "integrator") != LUA_TNIL)
     integrator = check_option<3, Integrator>(L, 1, integrator_names, "integrator", true);
-  if (get_field(L, 1, "gyroscopic") != LUA_TNIL)
+  if (get_field(L, 1, "gyroscopic") != LUA_TNIL) {
     gyroscopic = check_option<3, GyroscopicTerm>(L, 1, gyroscopic_names, "gyroscopic", true);
+    if (integrator == Integrator::rk4)
+      arg_error(L, 1, "field 'gyroscopic' is for the Euler integrators: rk4 always integrates "
+                      "the full Euler equations");
+  }
   if (get_field(L, 1, "substeps") != LUA_TNIL) substeps = check_substeps(L, 1, true);
   lua_settop(L, 1);
 
@@ -544,7 +548,7 @@ const Entry call_entry[] = {
 void register_methods(lua_State* L, int table_index) {
   table_index = lua_absindex(L, table_index);
   register_entries(L, table_index, methods);
-  if (luaL_loadstring(L, "return") != LUA_OK) lua_error(L);
+  if (luaL_loadbufferx(L, "return", 6, "=(world:step poll)", "t") != LUA_OK) lua_error(L);
   register_entries(L, table_index, step_entry, 1);
 }
 

@@ -226,6 +226,19 @@ T.case("callbacks may only apply forces", function()
   T.equal(b.position, vec3(), "untouched")
 end)
 
+-- A long w:step runs Lua hooks now and then (Ctrl-C and the lesson checker's limits use
+-- them); an error raised by a hook stops the step and changes nothing.
+T.case("long steps can be interrupted by a hook", function()
+  local w = world()
+  local b = w:add(body.sphere{mass = 1, radius = 1})
+  debug.sethook(function() error("interrupted by the hook") end, "", 1000)
+  local ok, message = pcall(w.step, w, 1e-9, 100000000)
+  debug.sethook()
+  T.equal(ok, false, "stopped")
+  T.equal(message:find("interrupted by the hook", 1, true) ~= nil, true, message)
+  T.equal(w.time, 0, "time unchanged"); T.equal(b.position, vec3(), "body unchanged")
+end)
+
 T.case("constructor and field errors", function()
   T.fails(function() return world(5) end, "bad argument #1 to 'world' (table expected, got number)")
   T.fails(function() return world{integrator = "rk5"} end,
@@ -242,6 +255,9 @@ T.case("constructor and field errors", function()
     "bad argument #1 to 'world' (field 'gravity' must be a vec3, got number)")
   T.fails(function() return world{gravty = vec3()} end,
     "bad argument #1 to 'world' (unknown field 'gravty' (fields are: gravity, integrator, gyroscopic, substeps))")
+  T.fails(function() return world{integrator = "rk4", gyroscopic = "off"} end,
+    "bad argument #1 to 'world' (field 'gyroscopic' is for the Euler integrators: rk4 always "
+    .. "integrates the full Euler equations)")
   local w = world()
   T.fails(function() w.time = 3 end, "world.time is read-only (it advances with w:step)")
   T.fails(function() w.gravity = 1 end, "world.gravity: vec3 expected, got number")
