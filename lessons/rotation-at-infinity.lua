@@ -122,9 +122,9 @@ uniform plank of length L hit square at its end has 1/m + (L/2)²/(mL²/12) ≈ 
 length. And a body of fixed inertia hit ever farther from its centre (a ball on a long
 light stick) has a term r²/I that grows without bound: it is spun ever more easily, and
 the impulse goes to zero, not to the linear one.]],
-      formula = "ball on a rod:   r²/(m(r² + 0.4ρ²)) → 1/m\n" ..
+      formula = "ball on a rod:    r²/(m(r² + 0.4ρ²)) → 1/m\n" ..
                 "plank at its end: 1/m + 3L²/(m(L² + w²)) → 4/m\n" ..
-                "fixed inertia:   r²/I → ∞",
+                "fixed inertia:    r²/I → ∞",
       run = function(ctx)
         local m, rho, rows = 1, 0.1, {}
         for _, radius in ipairs({0.2, 1, 10, 1000}) do
