@@ -158,6 +158,8 @@ the 2000 steps; RK4's error per step is of order Δt⁵, far below that.]],
         ctx:show("ω at the start (rad/s)", omega0)
         ctx:show("ω after 2 s (rad/s)", b.angular_velocity)
         ctx:show("change of ω (rad/s)", (b.angular_velocity - omega0):norm())
+        ctx:show("relative change of T", b:kinetic_energy() / T0 - 1)
+        ctx:show("relative change of L", (b:angular_momentum() - L0):norm() / L0:norm())
         ctx:expect("T after 2 s = T at the start", b:kinetic_energy() / T0, 1, {rel = 1e-9})
         ctx:expect("L after 2 s = L at the start", b:angular_momentum(), L0,
                    {abs = 1e-9 * L0:norm()})

@@ -91,7 +91,7 @@ general I_x + I_y = I_z + 2·Σ m·z² ≥ I_z. Equality is the signature of fla
 of w × h (a box with tiny depth) obeys I_z = I_x + I_y = m(w² + h²)/12; a cube of side a, with
 every moment m·a²/6, has I_x + I_y = m·a²/3, twice its I_z. This inequality between the three
 moments holds for every rigid body, about any point and in any orientation: a tensor that
-breaks it cannot belong to anything real.]],
+breaks it cannot belong to anything real, and body{} refuses it.]],
       formula = "any body: I_x + I_y = I_z + 2·∫z² dm ≥ I_z",
       run = function(ctx)
         local m, w, h = 2, 0.4, 0.3
@@ -105,6 +105,9 @@ breaks it cannot belong to anything real.]],
         local excess = cube:get(1, 1) + cube:get(2, 2) - cube:get(3, 3)
         ctx:show("cube: I_x + I_y − I_z = 2·∫z² dm (kg·m²)", excess)
         ctx:expect("cube: 2·∫z² dm = 2·m·a²/12 = 0.03", excess, 2 * m * a ^ 2 / 12)
+        local ok, message = pcall(body, {mass = 1, inertia = mat3.diag(1, 1, 3)})
+        ctx:say("body{mass = 1, inertia = mat3.diag(1, 1, 3)} → " .. (ok and "accepted" or message))
+        ctx:expect("a tensor with I_x + I_y < I_z is refused", ok and 1 or 0, 0)
       end,
     },
   },
