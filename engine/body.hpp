@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "engine/math.hpp"
+#include "engine/plane.hpp"
 
 namespace rigidlab {
 
@@ -37,6 +38,9 @@ struct Body {
   Vec3 force = Vec3::Zero();               // N, world, accumulated until the next step
   Vec3 torque = Vec3::Zero();              // N m, world, about the COM, accumulated
   Shape shape;
+  // Surface material for contacts (engine/plane.hpp: mixing rules and defaults).
+  double restitution = default_restitution;  // e in [0, 1]
+  double friction = default_friction;        // Coulomb μ >= 0
 };
 
 // A dynamic body of `mass` (finite, > 0) and body-frame `inertia` (symmetric positive definite,

@@ -43,6 +43,16 @@ std::string number(double x) {
   return buffer;
 }
 
+// The velocities that move the positions in each integrator's step (engine/contact_solver.hpp).
+ContactVelocities contact_velocities(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::euler: return ContactVelocities::current;
+    case Integrator::semi_implicit: return ContactVelocities::after_forces;
+    case Integrator::rk4: break;
+  }
+  return ContactVelocities::mid_step;
+}
+
 void require_not_stepping(const World& w, const char* what) {
   if (w.stepping())
     throw std::logic_error(std::string("cannot ") + what +
@@ -60,6 +70,7 @@ class World::StepGuard {
  public:
   StepGuard(World& w, bool take_snapshot) : world_(w), time_(w.time_) {
     world_.store_->stepping_ = true;
+    world_.contacts_.save();
     world_.snapshot_.resize(world_.bodies().size());
     if (!take_snapshot) return;
     const std::vector<Body>& bodies = world_.bodies();
@@ -70,6 +81,7 @@ class World::StepGuard {
     world_.store_->stepping_ = false;
     if (committed_) return;
     world_.time_ = time_;
+    world_.contacts_.restore();
     if (!has_snapshot_) return;
     std::vector<Body>& bodies = world_.bodies();
     for (std::size_t i = 0; i < bodies.size(); ++i) set_state(bodies[i], world_.snapshot_[i]);
@@ -111,6 +123,7 @@ BodyStore::Id World::add(const Body& b) {
   require_not_stepping(*this, "add a body");
   if (!state_is_finite(b) || !is_finite(b.force) || !is_finite(b.torque))
     throw std::invalid_argument("the body's state must be finite");
+  if (b.shape.kind != ShapeKind::none) ++shaped_bodies_;
   return store_->insert(b);
 }
 
@@ -135,7 +148,23 @@ Body World::remove(BodyStore::Id id) {
     drags.push_back(d);
   }
   drags_.swap(drags);
+  contacts_.body_removed(index);
+  if (store_->get(id).shape.kind != ShapeKind::none) --shaped_bodies_;
   return store_->erase(id);
+}
+
+std::size_t World::add_plane(const Plane& p) {
+  require_not_stepping(*this, "add a plane");
+  // Re-validate through make_plane: the normal must be unit for the contact code.
+  planes_.push_back(make_plane(p.normal, p.offset, p.restitution, p.friction));
+  return planes_.size() - 1;
+}
+
+void World::set_contact_settings(const ContactSettings& s) {
+  require_not_stepping(*this, "change the contact settings");
+  const std::string problem = contact_settings_problem(s);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  contacts_.settings = s;
 }
 
 void World::add_spring(const Spring& s) {
@@ -179,21 +208,32 @@ void World::evaluate_forces(double t) {
   for (std::size_t i = 0; i < callbacks_.size(); ++i) callbacks_[i](*this, t);
 }
 
-// One substep from t to t + dt with the chosen integrator (STYLE.md 7: a switch on the enum).
+// One substep from t to t + dt with the chosen integrator (STYLE.md 7: a switch on the enum),
+// and the contact step around it (engine/contact_solver.hpp): contact impulses on the
+// velocities that will move the positions, the integrator, then position correction.
 std::size_t World::integrate(double t, double dt, BodyState* save_to) {
+  // RK4 evaluates the force elements at each of its stages; the Euler methods once, first.
+  if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
+  const bool contacts = has_contacts();
+  if (contacts)
+    contacts_.solve_velocities(bodies(), planes_, gravity_, dt, contact_velocities(integrator_));
+  std::size_t bad = all_finite;
   switch (integrator_) {
     case Integrator::euler:
-      if (has_force_elements()) evaluate_forces(t);
-      return euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
-    case Integrator::semi_implicit:
-      if (has_force_elements()) evaluate_forces(t);
-      return semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
-    case Integrator::rk4:
+      bad = euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
       break;
+    case Integrator::semi_implicit:
+      bad = semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
+      break;
+    case Integrator::rk4: {
+      static const std::function<void(double)> no_forces;
+      bad = rk4_step(bodies(), gravity_, t, dt, rk4_,
+                     has_force_elements() ? stage_forces_ : no_forces, save_to);
+      break;
+    }
   }
-  static const std::function<void(double)> no_forces;
-  return rk4_step(bodies(), gravity_, t, dt, rk4_,
-                  has_force_elements() ? stage_forces_ : no_forces, save_to);
+  if (contacts && bad == all_finite) bad = contacts_.correct_positions(bodies());
+  return bad;
 }
 
 void World::step(double dt, long count, const std::function<void()>& between_steps) {
@@ -202,8 +242,9 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
   if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
   require_not_stepping(*this, "step the world");
   // With force elements, forces are evaluated (and callbacks may throw) before the first
-  // integrator pass, so the snapshot comes first; without, that pass writes it.
-  const bool snapshot_in_pass = !has_force_elements();
+  // integrator pass, and contact impulses change velocities before it, so the snapshot comes
+  // first; without either, that pass writes it.
+  const bool snapshot_in_pass = !has_force_elements() && !has_contacts();
   StepGuard guard(*this, !snapshot_in_pass);
   const double call_start = time_;
   const double h = dt / substeps_;

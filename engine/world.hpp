@@ -17,8 +17,10 @@
 #include <vector>
 
 #include "engine/body.hpp"
+#include "engine/contact_solver.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrators.hpp"
+#include "engine/plane.hpp"
 
 namespace rigidlab {
 
@@ -111,6 +113,16 @@ class World {
   const std::vector<Spring>& springs() const { return springs_; }
   const std::vector<Drag>& drags() const { return drags_; }
 
+  // ---- contacts (engine/contact_solver.hpp) ----
+  // Bodies with a shape collide with each other and with the planes. A body's shape must not
+  // change while it is in the world (the world counts the shaped bodies when they are added).
+  std::size_t add_plane(const Plane& p);  // returns its index; std::invalid_argument if bad
+  const std::vector<Plane>& planes() const { return planes_; }
+  const ContactSettings& contact_settings() const { return contacts_.settings; }
+  void set_contact_settings(const ContactSettings& s);  // std::invalid_argument if bad
+  // The contact points of the last substep (ContactInfo::a, b index bodies()).
+  const std::vector<ContactInfo>& contacts() const { return contacts_.contacts(); }
+
   // ---- time ----
   // Advances `count` steps of dt (s, finite and > 0), each in substeps() equal substeps with
   // the chosen integrator. Forces applied before the call act during the whole first step
@@ -136,6 +148,9 @@ class World {
  private:
   class StepGuard;
   bool has_force_elements() const;
+  bool has_contacts() const {
+    return shaped_bodies_ >= (planes_.empty() ? 2u : 1u);
+  }
   void evaluate_forces(double t);
   std::size_t integrate(double t, double dt, BodyState* save_to);
   [[noreturn]] void throw_non_finite(std::size_t index, double t0, double t1,
@@ -150,6 +165,9 @@ class World {
   std::vector<Spring> springs_;
   std::vector<Drag> drags_;
   std::vector<ForceCallback> callbacks_;
+  std::vector<Plane> planes_;
+  ContactSolver contacts_;
+  std::size_t shaped_bodies_ = 0;  // bodies whose shape is not none
   std::vector<BodyState> snapshot_;  // the state before the current step, for undoing it
   Rk4Workspace rk4_;
   std::function<void(double)> stage_forces_;  // evaluate_forces, bound once for rk4_step

@@ -142,8 +142,11 @@ std::unique_ptr<World> two_bodies_on_a_spring(double damping) {
   auto world = std::make_unique<World>();  // a World cannot move: its store points back at it
   World& w = *world;
   w.set_integrator(Integrator::rk4);
-  w.add(make_box_body(1.0, Vec3(1, 0.5, 0.2)));
-  w.add(ball(Vec3(1.5, -0.5, 0.3)));
+  // Without collision shapes: the box and the ball on these springs would hit each other.
+  Body box = make_box_body(1.0, Vec3(1, 0.5, 0.2)), sphere = ball(Vec3(1.5, -0.5, 0.3));
+  box.shape = sphere.shape = Shape{};
+  w.add(box);
+  w.add(sphere);
   Spring s;
   s.a = 0, s.b = 1;
   s.a_point = Vec3(0.5, 0.25, 0.1);

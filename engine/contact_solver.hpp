@@ -1,0 +1,215 @@
+// The contact step of a world: finds the contacts between the bodies' shapes and the static
+// planes (engine/contacts.hpp), then solves all of them together with sequential impulses
+// (E. Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005; "Fast and Simple
+// Physics using Sequential Impulses", GDC 2006; Box2D v2.4's b2ContactSolver), and finally
+// pushes overlapping bodies apart by moving them (non-linear Gauss-Seidel, Box2D's
+// SolvePositionConstraints), which changes no velocity.
+//
+// /work/shared/seeds/000_* "Sequential impulses": 1. integrate applied forces to tentative
+// velocities, 2. apply impulses sequentially for all constraints to correct the velocity
+// errors, 3. use the new velocities to update the positions. Each contact point has three
+// constraints: along the normal (001_* Appendix D: λ = −J v / (J W Jᵀ), with the effective
+// mass J W Jᵀ = m_a⁻¹ + m_b⁻¹ + (r_a×n)·I_a⁻¹(r_a×n) + (r_b×n)·I_b⁻¹(r_b×n), which is n·K n
+// for 002_* "Inverse Mass Matrix" K) and along two tangents (Coulomb friction). Per sweep,
+// for each point: friction, then the normal, as Box2D. Impulses are accumulated over the
+// sweeps and the accumulated value is clamped, not each increment (Catto 2005): normal
+// λn ≥ 0, friction (λt1, λt2) inside the disk of radius μ λn (the Coulomb cone).
+//
+// Details, each a named scheme:
+// - Warm starting: a point that touched in the previous step (same bodies or plane, same
+//   `feature`, engine/contacts.hpp) starts from the impulses it ended with, scaled by the ratio
+//   of the time steps; the friction impulse is kept as a world vector and re-projected on the
+//   new tangents. A point whose feature is new continues the nearest point of the previous
+//   step within match_distance (the position matching of Bullet's persistent manifolds).
+// - Speculative contacts (Catto, "Continuous Collision", GDC 2013; Box2D v3): points with a gap
+//   s > 0 up to speculative_distance plus what the bodies can travel in the step are
+//   constraints too, v_n ≥ −s/Δt: the bodies may close the gap in this step, not more. A
+//   falling body lands on the surface instead of sinking into it, and a resting one stays.
+// - Restitution (Box2D v3's b2ApplyRestitution): after the sweeps, a point that took an
+//   impulse and whose approach speed before the solve, −v_n⁻, exceeded restitution_threshold
+//   is solved again for v_n = −e v_n⁻ (003_* "Collision Response": the coefficient of
+//   restitution relates the normal velocities before and after). Below the threshold e = 0:
+//   a resting body neither bounces forever nor jitters.
+// - Position correction: non-linear Gauss-Seidel (Box2D v2.4 b2ContactSolver::
+//   SolvePositionConstraints) on the separation recomputed from each point's anchors,
+//   C = clamp(β (s + slop), −max_correction, 0), moving the bodies by −C/K along n. Only
+//   positions change, so overlap is removed without adding energy (Baumgarte's velocity
+//   bias would throw stacked bodies up).
+// - Impacts are solved manifold by manifold first (a coarse correction before Gauss-Seidel):
+//   when the centroid of a manifold must change its normal speed by more than impact_speed,
+//   its points first get equal shares of the impulse that brings the centroid to the mean
+//   target, −(v_n + bias)/(J W Jᵀ) at the mean point (or takes back a warm start that pushes
+//   too hard, down to 0 at the least-loaded point); the same for the restitution pass.
+//   Gauss-Seidel then corrects the split. A symmetric impact (a box landing flat) is solved
+//   symmetrically at once, where plain sequential impulses solve one corner first and leave a
+//   spin that only many sweeps remove. Resting contacts keep their warm-started split.
+//
+// When it runs (World::step): with the Euler integrators the impulses are computed against the
+// velocities the integrator is about to produce (semi-implicit: v + Δt(F/m + g) and
+// ω + Δt I⁻¹τ; explicit Euler, whose positions move with the old velocities: v and ω), applied
+// to the bodies, then the integrator runs, then positions are corrected: for semi-implicit
+// Euler this is exactly the order above (the gyroscopic term, second order in Δt, is left to
+// the integrator). RK4 moves positions by x' = x + Δt v + Δt²/2 a (constant forces), so its
+// contacts are solved before its step too, once, on the mean velocity of the step,
+// v + Δt/2 (F/m + g): positions then stay on the surface exactly, where solving after the
+// step (at the new positions, on the new velocities) lets RK4 sink a resting body by
+// g Δt²/2 every step that only position correction pulls back (1 cm at 60 Hz, a stack of
+// three 3 cm). The price: between steps, a body resting on a contact shows v = −g Δt/2 (the
+// impulse acted at the start of the step, gravity during it). Springs and force callbacks
+// are evaluated at RK4's stages, after the contacts: the prediction uses gravity and the
+// forces applied before the step, and position correction takes up the difference.
+//
+// Nothing here allocates once the vectors have grown to the largest number of contacts seen.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/body.hpp"
+#include "engine/contacts.hpp"
+#include "engine/forces.hpp"
+#include "engine/plane.hpp"
+
+namespace rigidlab {
+
+struct ContactSettings {
+  static constexpr int max_iterations = 1000;
+  int iterations = 10;                 // velocity sweeps per step (1 .. max_iterations)
+  int position_iterations = 3;         // position-correction sweeps per step (Box2D: 3)
+  double restitution_threshold = 1.0;  // m/s: slower impacts do not bounce (Box2D: 1 m/s)
+  double linear_slop = 0.005;          // m: overlap left uncorrected, keeps contacts (Box2D)
+  double baumgarte = 0.2;              // fraction of the overlap removed per sweep (Box2D)
+  double max_correction = 0.2;         // m: largest move per point per sweep (Box2D)
+  double speculative_distance = 0.02;  // m: gaps up to this are contacts (Box2D v3: 4 slops)
+  double match_distance = 0.02;        // m: a point this close to one of the previous step
+                                       // (same pair) continues it, when the features differ
+  double impact_speed = 1.0;           // m/s: a manifold whose centroid must change its
+                                       // normal speed by more is solved as a whole first
+};
+
+// "" or the rule broken: "iterations must be an integer from 1 to 1000, got 0", ...
+std::string contact_settings_problem(const ContactSettings& settings);
+
+// Which velocities the impulses are computed against (see above): the velocities that move the
+// positions in the integrator's step, v + h (F/m + g) and ω + h I_world⁻¹ τ.
+enum class ContactVelocities {
+  after_forces,  // h = Δt: semi-implicit Euler (x' = x + Δt v')
+  mid_step,      // h = Δt/2: RK4 with constant forces (x' = x + Δt v + Δt²/2 a)
+  current,       // h = 0: explicit Euler (x' = x + Δt v)
+};
+
+inline constexpr std::size_t no_plane = static_cast<std::size_t>(-1);
+
+// One contact point of the last step, for reports and for warm starting the next step.
+struct ContactInfo {
+  std::size_t a = no_body;       // index of body a in the world; no_body when a is a plane
+  std::size_t b = no_body;       // index of body b
+  std::size_t plane = no_plane;  // index of the plane, when a is a plane
+  std::uint32_t feature = 0;
+  Vec3 point = Vec3::Zero();             // m, world, midway between the surfaces when found
+  Vec3 normal = Vec3::UnitY();           // unit, from a to b (a plane's own normal)
+  double depth = 0.0;                    // m, overlap when found (< 0: a gap the step could close)
+  double normal_impulse = 0.0;           // N s: b received normal_impulse·normal, a the opposite
+  Vec3 friction_impulse = Vec3::Zero();  // N s, tangential, on b (a the opposite)
+  double restitution = 0.0;              // the mixed material of the pair (engine/plane.hpp)
+  double friction = 0.0;
+};
+
+// A point that touched (depth ≥ 0) or pushed (normal impulse > 0) in the step: the contacts
+// worth reporting. The others were speculative and stayed apart.
+inline bool touched(const ContactInfo& c) { return c.depth >= 0.0 || c.normal_impulse > 0.0; }
+
+class ContactSolver {
+ public:
+  ContactSettings settings;
+
+  // Finds the contacts at the bodies' current poses, solves their velocities and applies the
+  // change of velocity to the bodies (static bodies and planes never move). Δt in s. Returns
+  // the index of the first body in a contact whose velocity became non-finite, or all_finite.
+  std::size_t solve_velocities(std::vector<Body>& bodies, const std::vector<Plane>& planes,
+                               const Vec3& gravity, double dt, ContactVelocities velocities);
+  // Position correction of the contacts found by the last solve_velocities, at the bodies'
+  // present poses (after the integrator moved them). Returns the first non-finite body index.
+  std::size_t correct_positions(std::vector<Body>& bodies);
+
+  // Every point of the last solve (touched and speculative), ordered by body a, then body b or
+  // plane, then feature.
+  const std::vector<ContactInfo>& contacts() const { return contacts_; }
+
+  // Body `index` left the world: its contacts are forgotten, later indices drop by one.
+  void body_removed(std::size_t index);
+  // The world's undo: remember the contacts now, and put them back after a failed step.
+  void save();
+  void restore();
+
+ private:
+  // A body in contact, with the velocities being solved (slot 0 is the ground: planes and
+  // static bodies, velocity 0 and inverse mass 0).
+  struct SolverBody {
+    Vec3 velocity, angular_velocity;              // m/s, rad/s, world
+    Vec3 start_velocity, start_angular_velocity;  // before the solve
+    Mat3 inverse_inertia;                         // world, 1/(kg m²)
+    double inverse_mass;                          // 1/kg
+    std::size_t index;                            // in the world
+  };
+  // One contact point: its three constraints and their accumulated impulses.
+  struct Constraint {
+    std::size_t a, b, plane;
+    std::uint32_t slot_a, slot_b, feature;
+    Vec3 normal, tangent1, tangent2;  // unit, orthogonal
+    Vec3 point;                       // m, world, when found
+    Vec3 r_a, r_b;                    // m, from each COM to the point
+    Vec3 anchor_a, anchor_b;          // witness points in body coordinates (a plane's: world)
+    double radius_a, radius_b;        // m, of a sphere (its witness is recomputed), else 0
+    double separation;                // m, −depth
+    double normal_mass, tangent_mass1, tangent_mass2;  // kg: 1/(J W Jᵀ)
+    double normal_impulse, tangent_impulse1, tangent_impulse2, max_normal_impulse;  // N s
+    double bias;      // m/s: gap/Δt of a speculative point, else 0
+    double approach;  // m/s: v_n before the solve
+    double restitution, friction;
+  };
+  // A shape in the broad phase: its extent along x (sweep and prune).
+  struct Proxy {
+    double min_x, max_x;  // m
+    std::size_t index;
+    double radius;  // m, bounding sphere
+    double sweep;   // m: how far the shape's points can move in the step
+  };
+
+  std::uint32_t slot_for(const std::vector<Body>& bodies, std::size_t index, const Vec3& gravity,
+                         double dt, ContactVelocities velocities);
+  void find_contacts(std::vector<Body>& bodies, const std::vector<Plane>& planes,
+                     const Vec3& gravity, double dt, ContactVelocities velocities);
+  void add_manifold(const std::vector<Body>& bodies, const Manifold& m, std::size_t a,
+                    std::size_t b, std::size_t plane, const Plane* plane_material, double dt,
+                    std::uint32_t slot_a, std::uint32_t slot_b);
+  const ContactInfo* previous_point(const Constraint& c) const;
+  void warm_start(Constraint& c, double dt);
+  void seed_manifold(std::size_t begin, std::size_t end, bool restitution);
+  // Calls f(begin, end) for the constraint range of each manifold.
+  template <class F>
+  void for_each_manifold(F&& f) {
+    for (std::size_t i = 0; i < manifold_begin_.size(); ++i)
+      f(manifold_begin_[i],
+        i + 1 < manifold_begin_.size() ? manifold_begin_[i + 1] : constraints_.size());
+  }
+  void solve_point(Constraint& c);
+  void apply_restitution();
+  void store_results(double dt);
+  std::size_t write_back(std::vector<Body>& bodies);
+
+  std::vector<SolverBody> solver_bodies_;  // slot 0: the ground (planes, static bodies)
+  std::vector<std::uint32_t> slot_of_;     // by body index; 0 when not in a contact yet
+  std::vector<Proxy> proxies_;             // broad phase, sorted along x
+  std::vector<Constraint> constraints_;
+  std::vector<std::size_t> manifold_begin_;  // the first constraint of each manifold
+  std::vector<ContactInfo> contacts_;        // the last step's, sorted (warm starting)
+  std::vector<ContactInfo> next_contacts_;
+  std::vector<ContactInfo> saved_contacts_;
+  double last_dt_ = 0.0;
+  double saved_dt_ = 0.0;
+};
+
+}  // namespace rigidlab

@@ -1,0 +1,337 @@
+#include "engine/contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rigidlab {
+namespace {
+
+// Combines feature numbers into one (boost::hash_combine's mixing): equal inputs give equal
+// ids from step to step, which is all warm starting needs.
+std::uint32_t mix(std::uint32_t seed, std::uint32_t value) {
+  return seed ^ (value + 0x9e3779b9u + (seed << 6) + (seed >> 2));
+}
+
+double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
+
+// Half the length of the projection of a box onto the unit axis n (m): Σ h_k |n·u_k|.
+double radius_along(const Pose& box, const Vec3& half, const Vec3& n) {
+  return half.x() * std::abs(n.dot(box.rotation.col(0))) +
+         half.y() * std::abs(n.dot(box.rotation.col(1))) +
+         half.z() * std::abs(n.dot(box.rotation.col(2)));
+}
+
+// Appends a point given its gap (= −depth) and the point of b's surface measured from a's
+// surface along n: the midpoint lies half the gap back towards a.
+void add_point(Manifold& m, const Vec3& surface_point_b, double gap, std::uint32_t feature) {
+  m.points[m.count++] = {surface_point_b - 0.5 * gap * m.normal, -gap, feature};
+}
+
+// ---- box–box helpers --------------------------------------------------------------------
+
+struct ClipVertex {
+  Vec3 p;
+  std::uint32_t id;
+};
+constexpr int max_clip_vertices = 8;  // a quad clipped by four planes gains at most four
+
+// Sutherland–Hodgman against one plane: keeps the part of the convex polygon `in` where
+// dir·p ≤ limit. Returns the number of vertices written to `out`.
+int clip_polygon(const ClipVertex* in, int count, ClipVertex* out, const Vec3& dir, double limit,
+                 std::uint32_t plane_id) {
+  int written = 0;
+  for (int k = 0; k < count; ++k) {
+    const ClipVertex& prev = in[(k + count - 1) % count];
+    const ClipVertex& cur = in[k];
+    const double dp = dir.dot(prev.p) - limit, dc = dir.dot(cur.p) - limit;
+    if ((dp < 0.0 && dc > 0.0) || (dp > 0.0 && dc < 0.0))
+      out[written++] = {prev.p + (dp / (dp - dc)) * (cur.p - prev.p),
+                        mix(mix(plane_id, prev.id), cur.id)};
+    if (dc <= 0.0) out[written++] = cur;
+  }
+  return written;
+}
+
+// Keeps four of `count` > 4 points of one face contact: the deepest, the one farthest from it
+// across the face, the one making the largest triangle with those two, and the one making the
+// largest triangle on the other side of their edge (Gregorius, GDC 2015). Distances and areas
+// are measured in the contact plane.
+void reduce_to_four(const ContactPoint* points, int count, Manifold& m) {
+  const Vec3& n = m.normal;
+  auto in_plane = [&n](const Vec3& v) -> Vec3 { return v - n.dot(v) * n; };
+  int first = 0;
+  for (int k = 1; k < count; ++k)
+    if (points[k].depth > points[first].depth) first = k;
+  const Vec3& p0 = points[first].point;
+  int second = first;
+  double farthest = -1.0;
+  for (int k = 0; k < count; ++k) {
+    const double d2 = in_plane(points[k].point - p0).squaredNorm();
+    if (d2 > farthest) farthest = d2, second = k;
+  }
+  const Vec3 edge = points[second].point - p0;
+  auto area = [&](int k) { return edge.cross(points[k].point - p0).dot(n); };
+  int third = first;
+  double largest = -1.0;
+  for (int k = 0; k < count; ++k)
+    if (std::abs(area(k)) > largest) largest = std::abs(area(k)), third = k;
+  const double side = sign_of(area(third));
+  int fourth = -1;
+  double opposite = 0.0;
+  for (int k = 0; k < count; ++k)
+    if (-side * area(k) > opposite) opposite = -side * area(k), fourth = k;
+  m.count = 0;
+  for (int k : {first, second, third, fourth})
+    if (k >= 0) m.points[m.count++] = points[k];
+}
+
+// The contact of a face of `ref` (axis `axis`, outward unit normal ref_normal pointing at
+// `inc`) with the face of `inc` that faces it: the incident face is clipped against the four
+// side planes of the reference face; the clipped vertices within the margin below the
+// reference face are the points. The manifold normal is ref_normal (flipped by the caller
+// when ref is b).
+Manifold face_contact(const Pose& ref, const Vec3& ref_half, int axis, const Vec3& ref_normal,
+                      const Pose& inc, const Vec3& inc_half, double margin,
+                      std::uint32_t feature_seed) {
+  int face = 0;
+  double best = -1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double alignment = std::abs(inc.rotation.col(k).dot(ref_normal));
+    if (alignment > best) best = alignment, face = k;
+  }
+  const double face_sign = -sign_of(inc.rotation.col(face).dot(ref_normal));
+  const Vec3 face_center = inc.position + face_sign * inc_half[face] * inc.rotation.col(face);
+  const int f1 = (face + 1) % 3, f2 = (face + 2) % 3;
+  const Vec3 e1 = inc_half[f1] * inc.rotation.col(f1), e2 = inc_half[f2] * inc.rotation.col(f2);
+  ClipVertex buffer_a[max_clip_vertices] = {{face_center + e1 + e2, 0},
+                                            {face_center - e1 + e2, 1},
+                                            {face_center - e1 - e2, 2},
+                                            {face_center + e1 - e2, 3}};
+  ClipVertex buffer_b[max_clip_vertices];
+  ClipVertex* polygon = buffer_a;
+  ClipVertex* scratch = buffer_b;
+  int count = 4;
+  const int s1 = (axis + 1) % 3, s2 = (axis + 2) % 3;
+  for (int plane = 0; plane < 4 && count > 0; ++plane) {
+    const int side_axis = plane < 2 ? s1 : s2;
+    const Vec3 dir = (plane % 2 == 0 ? 1.0 : -1.0) * ref.rotation.col(side_axis);
+    const double limit = ref_half[side_axis] + dir.dot(ref.position);
+    count = clip_polygon(polygon, count, scratch, dir, limit, static_cast<std::uint32_t>(plane));
+    std::swap(polygon, scratch);
+  }
+  Manifold m;
+  m.normal = ref_normal;
+  const std::uint32_t seed =
+      mix(feature_seed, static_cast<std::uint32_t>(2 * face + (face_sign > 0)));
+  const Vec3 ref_center = ref.position + ref_half[axis] * ref_normal;
+  ContactPoint kept[max_clip_vertices];
+  int kept_count = 0;
+  for (int k = 0; k < count; ++k) {
+    const double gap = ref_normal.dot(polygon[k].p - ref_center);
+    if (gap <= margin)
+      kept[kept_count++] = {polygon[k].p - 0.5 * gap * ref_normal, -gap, mix(seed, polygon[k].id)};
+  }
+  if (kept_count <= max_manifold_points) {
+    for (int k = 0; k < kept_count; ++k) m.points[k] = kept[k];
+    m.count = kept_count;
+  } else {
+    reduce_to_four(kept, kept_count, m);
+  }
+  return m;
+}
+
+// One point where edge `edge_a` of a crosses edge `edge_b` of b, n the separating axis from a
+// to b: the midpoint of the closest points of the two edges that support the boxes along n.
+Manifold edge_contact(const Pose& a, const Vec3& ha, int edge_a, const Pose& b, const Vec3& hb,
+                      int edge_b, const Vec3& n) {
+  Vec3 pa = a.position, pb = b.position;
+  for (int k = 0; k < 3; ++k) {
+    if (k != edge_a) pa += ha[k] * sign_of(n.dot(a.rotation.col(k))) * a.rotation.col(k);
+    if (k != edge_b) pb -= hb[k] * sign_of(n.dot(b.rotation.col(k))) * b.rotation.col(k);
+  }
+  // Closest points of pa + s u and pb + t v (Ericson 5.1.9 for unit directions), clamped to
+  // the edges: s = t (u·v) − u·w, t = s (u·v) + v·w with w = pa − pb.
+  const Vec3 u = a.rotation.col(edge_a), v = b.rotation.col(edge_b), w = pa - pb;
+  const double uv = u.dot(v), uw = u.dot(w), vw = v.dot(w), denom = 1.0 - uv * uv;
+  double s = denom > 1e-12 ? (uv * vw - uw) / denom : 0.0;
+  s = std::clamp(s, -ha[edge_a], ha[edge_a]);
+  double t = s * uv + vw;
+  if (std::abs(t) > hb[edge_b]) {
+    t = std::clamp(t, -hb[edge_b], hb[edge_b]);
+    s = std::clamp(t * uv - uw, -ha[edge_a], ha[edge_a]);
+  }
+  const Vec3 qa = pa + s * u, qb = pb + t * v;
+  Manifold m;
+  m.normal = n;
+  add_point(m, qb, n.dot(qb - qa), 0x80000000u | static_cast<std::uint32_t>(3 * edge_a + edge_b));
+  return m;
+}
+
+Manifold flipped(Manifold m) {
+  m.normal = -m.normal;
+  return m;
+}
+
+}  // namespace
+
+double bounding_radius(const Shape& shape) {
+  switch (shape.kind) {
+    case ShapeKind::sphere:
+      return shape.radius;
+    case ShapeKind::box:
+      return shape.half_extents.norm();
+    case ShapeKind::none:
+      break;
+  }
+  return 0.0;
+}
+
+Manifold collide_sphere_plane(const Vec3& center, double radius, const Plane& plane,
+                              double margin) {
+  Manifold m;
+  m.normal = plane.normal;
+  const double gap = signed_distance(plane, center) - radius;
+  if (gap <= margin) add_point(m, center - radius * plane.normal, gap, 0);
+  return m;
+}
+
+Manifold collide_box_plane(const Pose& box, const Vec3& half, const Plane& plane, double margin) {
+  struct Corner {
+    double gap;
+    std::uint32_t index;
+    Vec3 p;
+  };
+  Corner corners[8];
+  int count = 0;
+  for (std::uint32_t i = 0; i < 8; ++i) {
+    const Vec3 local((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
+                     (i & 4) ? half.z() : -half.z());
+    const Vec3 p = box.position + box.rotation * local;
+    const double gap = signed_distance(plane, p);
+    if (gap <= margin) corners[count++] = {gap, i, p};
+  }
+  // The deepest four (a face lying on the plane gives exactly its four corners): insertion
+  // sort by gap, ties by corner number.
+  for (int k = 1; k < count; ++k)
+    for (int j = k; j > 0 && corners[j].gap < corners[j - 1].gap; --j)
+      std::swap(corners[j], corners[j - 1]);
+  Manifold m;
+  m.normal = plane.normal;
+  for (int k = 0; k < std::min(count, max_manifold_points); ++k)
+    add_point(m, corners[k].p, corners[k].gap, corners[k].index);
+  return m;
+}
+
+Manifold collide_sphere_sphere(const Vec3& center_a, double radius_a, const Vec3& center_b,
+                               double radius_b, double margin) {
+  Manifold m;
+  const Vec3 d = center_b - center_a;
+  const double distance = d.norm();
+  const double gap = distance - radius_a - radius_b;
+  if (gap > margin) return m;
+  m.normal = distance > 0.0 ? Vec3(d / distance) : Vec3::UnitY();
+  add_point(m, center_b - radius_b * m.normal, gap, 0);
+  return m;
+}
+
+Manifold collide_box_sphere(const Pose& box, const Vec3& half, const Vec3& center, double radius,
+                            double margin) {
+  Manifold m;
+  const Vec3 local = box.rotation.transpose() * (center - box.position);
+  Vec3 surface = local.cwiseMax(-half).cwiseMin(half);  // the closest point of the box
+  Vec3 normal_local;
+  double gap;
+  if (surface != local) {  // centre outside: along the line from the closest point
+    const Vec3 offset = local - surface;
+    const double distance = offset.norm();
+    gap = distance - radius;
+    if (gap > margin) return m;
+    normal_local = offset / distance;
+  } else {  // centre inside: out through the nearest face
+    int axis = 0;
+    const Vec3 inside = half - local.cwiseAbs();
+    inside.minCoeff(&axis);
+    normal_local = sign_of(local[axis]) * Vec3::Unit(axis);
+    surface[axis] = normal_local[axis] * half[axis];
+    gap = -inside[axis] - radius;
+  }
+  m.normal = box.rotation * normal_local;
+  add_point(m, center - radius * m.normal, gap, 0);
+  return m;
+}
+
+Manifold collide_box_box(const Pose& a, const Vec3& ha, const Pose& b, const Vec3& hb,
+                         double margin) {
+  constexpr double minus_infinity = -std::numeric_limits<double>::infinity();
+  const Vec3 d = b.position - a.position;
+  // The 15 candidate axes, each oriented from a to b; the separation along one is the
+  // distance between the projections of the boxes (negative: overlap).
+  double best[3] = {minus_infinity, minus_infinity, minus_infinity};  // face a, face b, edges
+  int index[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  Vec3 normal[3];
+  auto consider = [&](int kind, int i, int j, Vec3 n) {
+    double distance = n.dot(d);
+    if (distance < 0.0) n = -n, distance = -distance;
+    const double separation = distance - radius_along(a, ha, n) - radius_along(b, hb, n);
+    if (separation > best[kind]) {
+      best[kind] = separation;
+      index[kind][0] = i, index[kind][1] = j;
+      normal[kind] = n;
+    }
+    return separation <= margin;
+  };
+  for (int i = 0; i < 3; ++i)
+    if (!consider(0, i, 0, a.rotation.col(i))) return {};
+  for (int j = 0; j < 3; ++j)
+    if (!consider(1, j, 0, b.rotation.col(j))) return {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 axis = a.rotation.col(i).cross(b.rotation.col(j));
+      const double length = axis.norm();  // sin of the angle between the edges
+      if (length > 1e-6 && !consider(2, i, j, axis / length)) return {};
+    }
+  // Prefer a's faces, then b's, then edges, unless the next is clearly better: with nearly
+  // equal separations (a box resting on another) the choice then stays the same from step
+  // to step, and so do the feature ids warm starting relies on.
+  const double tolerance = std::min(1e-3, 0.01 * std::min(ha.minCoeff(), hb.minCoeff()));
+  const bool face_of_b = best[1] > best[0] + tolerance;
+  const double best_face = face_of_b ? best[1] : best[0];
+  if (best[2] > best_face + tolerance)
+    return edge_contact(a, ha, index[2][0], b, hb, index[2][1], normal[2]);
+  if (!face_of_b)
+    return face_contact(a, ha, index[0][0], normal[0], b, hb, margin,
+                        static_cast<std::uint32_t>(index[0][0]));
+  return flipped(face_contact(b, hb, index[1][0], -normal[1], a, ha, margin,
+                              static_cast<std::uint32_t>(8 + index[1][0])));
+}
+
+Manifold collide_shapes(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
+                        double margin) {
+  const bool sphere_a = a.kind == ShapeKind::sphere, sphere_b = b.kind == ShapeKind::sphere;
+  if (a.kind == ShapeKind::none || b.kind == ShapeKind::none) return {};
+  if (sphere_a && sphere_b)
+    return collide_sphere_sphere(pose_a.position, a.radius, pose_b.position, b.radius, margin);
+  if (sphere_a)
+    return flipped(collide_box_sphere(pose_b, b.half_extents, pose_a.position, a.radius, margin));
+  if (sphere_b)
+    return collide_box_sphere(pose_a, a.half_extents, pose_b.position, b.radius, margin);
+  return collide_box_box(pose_a, a.half_extents, pose_b, b.half_extents, margin);
+}
+
+Manifold collide_shape_plane(const Shape& shape, const Pose& pose, const Plane& plane,
+                             double margin) {
+  switch (shape.kind) {
+    case ShapeKind::sphere:
+      return collide_sphere_plane(pose.position, shape.radius, plane, margin);
+    case ShapeKind::box:
+      return collide_box_plane(pose, shape.half_extents, plane, margin);
+    case ShapeKind::none:
+      break;
+  }
+  Manifold m;
+  m.normal = plane.normal;
+  return m;
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,362 @@
+// engine/contacts.hpp against geometry worked out by hand: depths, normals and points of
+// spheres, planes and boxes in known configurations (rotated boxes included), the witness
+// points on both surfaces, the margin of speculative contacts, and features that stay the
+// same while the same features touch.
+#include "engine/contacts.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace rigidlab {
+namespace {
+
+const double sqrt2 = std::sqrt(2.0);
+
+Pose pose(const Vec3& position, const Quat& q = Quat::Identity()) {
+  return {position, q.toRotationMatrix()};
+}
+
+Quat about(const Vec3& axis, double angle) { return quat_from_axis_angle(axis, angle); }
+
+void expect_vec(const Vec3& got, const Vec3& want, double tol = 1e-12) {
+  EXPECT_NEAR((got - want).norm(), 0.0, tol)
+      << "got (" << got.transpose() << "), want (" << want.transpose() << ")";
+}
+
+// The manifold holds a point at `want` (in any order); returns its index.
+int find_point(const Manifold& m, const Vec3& want, double tol = 1e-9) {
+  for (int k = 0; k < m.count; ++k)
+    if ((m.points[k].point - want).norm() < tol) return k;
+  ADD_FAILURE() << "no point at (" << want.transpose() << ")";
+  return 0;
+}
+
+// Signed distance from x to the surface of a box (negative inside), by its definition.
+double box_distance(const Pose& box, const Vec3& half, const Vec3& x) {
+  const Vec3 local = box.rotation.transpose() * (x - box.position);
+  const Vec3 q = local.cwiseAbs() - half;
+  return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+}
+
+// ---- spheres and planes ----------------------------------------------------------------------
+
+TEST(SpherePlane, OverlapDepthNormalMidpoint) {
+  // normal (0, 2, 0), offset 2: the half-space y >= 1. A ball of radius 1 at height 1.5 sinks
+  // 0.5 into it; its lowest point is at y = 0.5, the plane at y = 1, the midpoint at 0.75.
+  const Plane floor = make_plane(Vec3(0, 2, 0), 2.0);
+  const Manifold m = collide_sphere_plane(Vec3(3, 1.5, -2), 1.0, floor);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  EXPECT_NEAR(m.points[0].depth, 0.5, 1e-15);
+  expect_vec(m.points[0].point, Vec3(3, 0.75, -2));
+}
+
+TEST(SpherePlane, TiltedPlaneAndMargin) {
+  // The plane x + y >= 0 and a ball of radius 2 at (1, 1, 0): distance √2, depth 2 − √2;
+  // the deepest point of the ball is (1, 1, 0) − 2 n, the midpoint half the depth above it.
+  const Plane slope = make_plane(Vec3(1, 1, 0), 0.0);
+  const Vec3 n = Vec3(1, 1, 0) / sqrt2;
+  Manifold m = collide_sphere_plane(Vec3(1, 1, 0), 2.0, slope);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, n);
+  EXPECT_NEAR(m.points[0].depth, 2.0 - sqrt2, 1e-14);
+  expect_vec(m.points[0].point, Vec3(1, 1, 0) - (2.0 - 0.5 * (2.0 - sqrt2)) * n);
+  // 0.1 above the plane: nothing without a margin, a gap of 0.1 with one.
+  EXPECT_EQ(collide_sphere_plane(Vec3(0, 1.1, 0), 1.0, make_plane(Vec3(0, 1, 0), 0)).count, 0);
+  m = collide_sphere_plane(Vec3(0, 1.1, 0), 1.0, make_plane(Vec3(0, 1, 0), 0), 0.2);
+  ASSERT_EQ(m.count, 1);
+  EXPECT_NEAR(m.points[0].depth, -0.1, 1e-15);
+  expect_vec(m.points[0].point, Vec3(0, 0.05, 0), 1e-15);
+}
+
+TEST(SphereSphere, DepthNormalPointAndCoincidentCentres) {
+  Manifold m = collide_sphere_sphere(Vec3(0, 0, 0), 1.0, Vec3(1.5, 0, 0), 1.0);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(1, 0, 0));
+  EXPECT_NEAR(m.points[0].depth, 0.5, 1e-15);
+  expect_vec(m.points[0].point, Vec3(0.75, 0, 0));
+  // Radii 1 and 2, centres 2.4 apart along (3, 4, 0)/5: depth 0.6, a's surface at 1, b's at
+  // 2.4 − 2 = 0.4 along the line, midpoint at 0.7.
+  const Vec3 u(0.6, 0.8, 0.0);
+  m = collide_sphere_sphere(Vec3(1, 1, 1), 1.0, Vec3(1, 1, 1) + 2.4 * u, 2.0);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, u, 1e-15);
+  EXPECT_NEAR(m.points[0].depth, 0.6, 1e-14);
+  expect_vec(m.points[0].point, Vec3(1, 1, 1) + 0.7 * u, 1e-14);
+  m = collide_sphere_sphere(Vec3(2, 0, 0), 1.0, Vec3(2, 0, 0), 0.5);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  EXPECT_EQ(m.points[0].depth, 1.5);
+  EXPECT_EQ(collide_sphere_sphere(Vec3(0, 0, 0), 1.0, Vec3(0, 0, 2.01), 1.0).count, 0);
+  EXPECT_EQ(collide_sphere_sphere(Vec3(0, 0, 0), 1.0, Vec3(0, 0, 2.01), 1.0, 0.02).count, 1);
+}
+
+// ---- boxes and planes -------------------------------------------------------------------------
+
+TEST(BoxPlane, FlatBoxGivesItsFourBottomCorners) {
+  // Half extents (1, 0.5, 2) with the centre at y = 0.4: the bottom face is at y = −0.1.
+  const Manifold m =
+      collide_box_plane(pose(Vec3(0, 0.4, 0)), Vec3(1, 0.5, 2), make_plane(Vec3(0, 1, 0), 0));
+  ASSERT_EQ(m.count, 4);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  for (double x : {-1.0, 1.0})
+    for (double z : {-2.0, 2.0}) {
+      const int k = find_point(m, Vec3(x, -0.05, z));
+      EXPECT_NEAR(m.points[k].depth, 0.1, 1e-15);
+    }
+}
+
+TEST(BoxPlane, BoxOnAnEdgeGivesTwoPoints) {
+  // A unit-half cube turned 45° about z rests on an edge along z, √2 below its centre.
+  const Manifold m =
+      collide_box_plane(pose(Vec3(0, sqrt2 - 0.1, 0), about(Vec3(0, 0, 1), M_PI / 4)),
+                        Vec3(1, 1, 1), make_plane(Vec3(0, 1, 0), 0));
+  ASSERT_EQ(m.count, 2);
+  for (double z : {-1.0, 1.0}) {
+    const int k = find_point(m, Vec3(0, -0.05, z));
+    EXPECT_NEAR(m.points[k].depth, 0.1, 1e-14);
+  }
+}
+
+TEST(BoxPlane, CornerDownAndDeepBoxKeepsTheDeepestFour) {
+  // Corner down: the cube turned so its diagonal (1, 1, 1) points up; the lowest corner is
+  // √3 below the centre.
+  const Quat corner_up = Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3(0, 1, 0));
+  Manifold m = collide_box_plane(pose(Vec3(0, std::sqrt(3.0) - 0.2, 0), corner_up), Vec3(1, 1, 1),
+                                 make_plane(Vec3(0, 1, 0), 0));
+  ASSERT_EQ(m.count, 1);
+  EXPECT_NEAR(m.points[0].depth, 0.2, 1e-12);
+  expect_vec(m.points[0].point, Vec3(0, -0.1, 0), 1e-12);
+  // Sunk below the plane entirely: eight corners under it, the four lowest are kept.
+  m = collide_box_plane(pose(Vec3(0, -3, 0)), Vec3(1, 1, 1), make_plane(Vec3(0, 1, 0), 0));
+  ASSERT_EQ(m.count, 4);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(m.points[k].depth, 4.0, 1e-15);
+}
+
+// ---- boxes and spheres ------------------------------------------------------------------------
+
+TEST(BoxSphere, FaceEdgeCornerAndInside) {
+  const Vec3 half(1, 1, 1);
+  // Over the +y face: depth 0.2, box surface at y = 1, ball's lowest point at 0.8.
+  Manifold m = collide_box_sphere(pose(Vec3::Zero()), half, Vec3(0.3, 1.8, -0.2), 1.0);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  EXPECT_NEAR(m.points[0].depth, 0.2, 1e-15);
+  expect_vec(m.points[0].point, Vec3(0.3, 0.9, -0.2), 1e-15);
+  // Off the corner (1, 1, 1): distance √0.75 along (1, 1, 1)/√3.
+  m = collide_box_sphere(pose(Vec3::Zero()), half, Vec3(1.5, 1.5, 1.5), 1.0);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(1, 1, 1).normalized(), 1e-15);
+  EXPECT_NEAR(m.points[0].depth, 1.0 - std::sqrt(0.75), 1e-15);
+  // Centre inside, 0.1 under the +y face: out through it, depth 0.1 + r.
+  m = collide_box_sphere(pose(Vec3::Zero()), half, Vec3(0.2, 0.9, 0), 0.5);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  EXPECT_NEAR(m.points[0].depth, 0.6, 1e-15);
+  expect_vec(m.points[0].point, Vec3(0.2, 0.7, 0), 1e-15);
+  // Box turned 45° about z: its top is an edge at y = √2.
+  m = collide_box_sphere(pose(Vec3(5, 0, 0), about(Vec3(0, 0, 1), M_PI / 4)), half,
+                         Vec3(5, sqrt2 + 0.8, 0.5), 1.0);
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0), 1e-15);
+  EXPECT_NEAR(m.points[0].depth, 0.2, 1e-14);
+  expect_vec(m.points[0].point, Vec3(5, sqrt2 - 0.1, 0.5), 1e-14);
+}
+
+TEST(BoxSphere, ShapeOrderFlipsOnlyTheNormal) {
+  Shape box, ball;
+  box.kind = ShapeKind::box, box.half_extents = Vec3(1, 2, 3);
+  ball.kind = ShapeKind::sphere, ball.radius = 0.5;
+  const Pose box_pose = pose(Vec3(0, 0, 0), about(Vec3(1, 2, 3), 0.7));
+  const Pose ball_pose = pose(box_pose.rotation * Vec3(0, 2.3, 0));
+  const Manifold ab = collide_shapes(box, box_pose, ball, ball_pose);
+  const Manifold ba = collide_shapes(ball, ball_pose, box, box_pose);
+  ASSERT_EQ(ab.count, 1);
+  ASSERT_EQ(ba.count, 1);
+  expect_vec(ab.normal, box_pose.rotation.col(1), 1e-14);
+  expect_vec(ba.normal, -ab.normal);
+  expect_vec(ba.points[0].point, ab.points[0].point);
+  EXPECT_NEAR(ab.points[0].depth, 0.2, 1e-14);
+}
+
+// ---- box against box ----------------------------------------------------------------------
+
+TEST(BoxBox, SmallBoxOnBigBoxFaceToFace) {
+  // B (half 0.5) sits 0.1 deep in the top face of A (half 1): four points, y = 0.95.
+  const Manifold m = collide_box_box(pose(Vec3::Zero()), Vec3(1, 1, 1), pose(Vec3(0, 1.4, 0)),
+                                     Vec3(0.5, 0.5, 0.5));
+  ASSERT_EQ(m.count, 4);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  for (double x : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5})
+      EXPECT_NEAR(m.points[find_point(m, Vec3(x, 0.95, z))].depth, 0.1, 1e-14);
+}
+
+TEST(BoxBox, IncidentFaceIsClippedToTheReferenceFace) {
+  // B (half (1, 0.5, 1)) overhangs A's top face: its bottom spans x in [0.5, 2.5], A ends at
+  // x = 1, so the clipped points are at x = 0.5 and x = 1.
+  const Manifold m =
+      collide_box_box(pose(Vec3::Zero()), Vec3(1, 1, 1), pose(Vec3(1.5, 1.4, 0)), Vec3(1, 0.5, 1));
+  ASSERT_EQ(m.count, 4);
+  expect_vec(m.normal, Vec3(0, 1, 0));
+  for (double x : {0.5, 1.0})
+    for (double z : {-1.0, 1.0})
+      EXPECT_NEAR(m.points[find_point(m, Vec3(x, 0.95, z))].depth, 0.1, 1e-14);
+}
+
+TEST(BoxBox, ReferenceFaceOnBFlipsTheNormalBackToAtoB) {
+  // The small box is a, the big one b, below it: b's top face is the reference, the normal
+  // still points from a to b (down).
+  const Manifold m = collide_box_box(pose(Vec3(0, 1.4, 0)), Vec3(0.5, 0.5, 0.5), pose(Vec3::Zero()),
+                                     Vec3(1, 1, 1));
+  ASSERT_EQ(m.count, 4);
+  expect_vec(m.normal, Vec3(0, -1, 0));
+  for (double x : {-0.5, 0.5})
+    for (double z : {-0.5, 0.5})
+      EXPECT_NEAR(m.points[find_point(m, Vec3(x, 0.95, z))].depth, 0.1, 1e-14);
+}
+
+TEST(BoxBox, OctagonIsReducedToFourSpreadPoints) {
+  // B's bottom face, turned 45° about y, is a square with corners √2 from the centre; clipped
+  // by A's top face (|x|, |z| <= 1) it is an octagon with corners like (1, √2 − 1). Four are
+  // kept: they must be corners of that octagon, all 0.1 deep, and span at least the square
+  // between alternate corners (area 2 (√2 − 1)... measured as half the octagon's area).
+  const Manifold m =
+      collide_box_box(pose(Vec3::Zero()), Vec3(1, 1, 1),
+                      pose(Vec3(0, 1.4, 0), about(Vec3(0, 1, 0), M_PI / 4)), Vec3(1, 0.5, 1));
+  ASSERT_EQ(m.count, 4);
+  const double c = sqrt2 - 1.0;
+  std::vector<Vec3> octagon;
+  for (double s1 : {-1.0, 1.0})
+    for (double s2 : {-1.0, 1.0}) {
+      octagon.emplace_back(s1, 0.95, s2 * c);
+      octagon.emplace_back(s1 * c, 0.95, s2);
+    }
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(m.points[k].depth, 0.1, 1e-14);
+    const bool on_octagon = std::any_of(octagon.begin(), octagon.end(), [&](const Vec3& v) {
+      return (v - m.points[k].point).norm() < 1e-12;
+    });
+    EXPECT_TRUE(on_octagon) << m.points[k].point.transpose();
+  }
+  // Area of the kept quadrilateral (shoelace in x-z after sorting by angle).
+  std::vector<Vec3> quad;
+  for (const ContactPoint& p : m.points) quad.emplace_back(p.point.x(), 0.0, p.point.z());
+  std::sort(quad.begin(), quad.end(), [](const Vec3& p, const Vec3& q) {
+    return std::atan2(p.z(), p.x()) < std::atan2(q.z(), q.x());
+  });
+  double area = 0;
+  for (int k = 0; k < 4; ++k)
+    area += quad[k].x() * quad[(k + 1) % 4].z() - quad[(k + 1) % 4].x() * quad[k].z();
+  const double octagon_area = 4.0 - 2.0 * (1.0 - c) * (1.0 - c);
+  EXPECT_GT(std::abs(area) / 2, 0.5 * octagon_area);
+}
+
+TEST(BoxBox, CrossedEdgesGiveOnePoint) {
+  // A turned 45° about z has its top edge along z at y = √2. B turned 45° about x has its
+  // bottom edge along x, √2 below its centre; with the centre at 2√2 − 0.1 the edges cross
+  // 0.1 deep at (0, √2, 0): one point, midway, normal +y.
+  const Manifold m = collide_box_box(
+      pose(Vec3::Zero(), about(Vec3(0, 0, 1), M_PI / 4)), Vec3(1, 1, 1),
+      pose(Vec3(0, 2 * sqrt2 - 0.1, 0), about(Vec3(1, 0, 0), M_PI / 4)), Vec3(1, 1, 1));
+  ASSERT_EQ(m.count, 1);
+  expect_vec(m.normal, Vec3(0, 1, 0), 1e-14);
+  EXPECT_NEAR(m.points[0].depth, 0.1, 1e-14);
+  expect_vec(m.points[0].point, Vec3(0, sqrt2 - 0.05, 0), 1e-14);
+}
+
+TEST(BoxBox, SeparatedBoxesAndTheMargin) {
+  const Pose a = pose(Vec3::Zero(), about(Vec3(0, 1, 0), 0.3));
+  const Pose b = pose(a.rotation * Vec3(2.05, 0, 0), about(Vec3(0, 1, 0), 0.3));
+  EXPECT_EQ(collide_box_box(a, Vec3(1, 1, 1), b, Vec3(1, 1, 1)).count, 0);
+  const Manifold m = collide_box_box(a, Vec3(1, 1, 1), b, Vec3(1, 1, 1), 0.1);
+  ASSERT_EQ(m.count, 4);
+  expect_vec(m.normal, a.rotation.col(0), 1e-14);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(m.points[k].depth, -0.05, 1e-14);
+}
+
+// In any overlapping configuration, each point's witnesses (point ± n·depth/2) lie on the two
+// surfaces: p_a = point + n depth/2 on a's surface, p_b = point − n depth/2 on b's, measured
+// with a distance function of boxes written here from their definition.
+TEST(BoxBox, WitnessPointsLieOnTheSurfacesOfRandomRotatedBoxes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.3, 1.2);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Vec3 ha(size(rng), size(rng), size(rng)), hb(size(rng), size(rng), size(rng));
+    const Pose a =
+        pose(Vec3(u(rng), u(rng), u(rng)), about(Vec3(u(rng), u(rng), u(rng) + 2), 3 * u(rng)));
+    const Pose b = pose(a.position + 1.5 * Vec3(u(rng), u(rng), u(rng)),
+                        about(Vec3(u(rng) + 2, u(rng), u(rng)), 3 * u(rng)));
+    const Manifold m = collide_box_box(a, ha, b, hb);
+    for (int k = 0; k < m.count; ++k) {
+      const ContactPoint& p = m.points[k];
+      EXPECT_GE(p.depth, 0.0);
+      const Vec3 on_a = p.point + 0.5 * p.depth * m.normal,
+                 on_b = p.point - 0.5 * p.depth * m.normal;
+      EXPECT_NEAR(box_distance(a, ha, on_a), 0.0, 1e-9);
+      EXPECT_NEAR(box_distance(b, hb, on_b), 0.0, 1e-9);
+      // The incident witness (a clipped corner, or a point of a crossing edge) is inside the
+      // other box; its projection on the reference face need not be inside the tilted box.
+      // (Only for overlaps thinner than the boxes: deeper, a clipped corner can come out of
+      // the far side of the reference box.)
+      if (p.depth < std::min(ha.minCoeff(), hb.minCoeff()))
+        EXPECT_LE(std::min(box_distance(a, ha, on_b), box_distance(b, hb, on_a)), 1e-9);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 200);
+}
+
+TEST(BoxBox, FeaturesStayWhileTheSameFeaturesTouch) {
+  const Pose a = pose(Vec3::Zero());
+  // B's bottom face overhangs A's top face along x: two of its corners and two clipped points.
+  const Manifold m1 = collide_box_box(a, Vec3(1, 1, 1), pose(Vec3(1.5, 1.4, 0)), Vec3(1, 0.5, 0.8));
+  const Manifold m2 =
+      collide_box_box(a, Vec3(1, 1, 1), pose(Vec3(1.45, 1.41, 0.02)), Vec3(1, 0.5, 0.8));
+  ASSERT_EQ(m1.count, 4);
+  ASSERT_EQ(m2.count, 4);
+  std::vector<std::uint32_t> f1, f2;
+  for (int k = 0; k < 4; ++k)
+    f1.push_back(m1.points[k].feature), f2.push_back(m2.points[k].feature);
+  std::sort(f1.begin(), f1.end());
+  std::sort(f2.begin(), f2.end());
+  EXPECT_EQ(f1, f2);
+  EXPECT_EQ(std::unique(f1.begin(), f1.end()), f1.end()) << "features of one manifold differ";
+}
+
+TEST(Shapes, NoneTouchesNothingAndBoundingRadius) {
+  Shape none, ball, box;
+  ball.kind = ShapeKind::sphere, ball.radius = 2;
+  box.kind = ShapeKind::box, box.half_extents = Vec3(1, 2, 2);
+  EXPECT_EQ(collide_shapes(none, pose(Vec3::Zero()), ball, pose(Vec3::Zero())).count, 0);
+  EXPECT_EQ(collide_shape_plane(none, pose(Vec3::Zero()), make_plane(Vec3(0, 1, 0), 5)).count, 0);
+  EXPECT_EQ(bounding_radius(ball), 2.0);
+  EXPECT_EQ(bounding_radius(box), 3.0);
+  EXPECT_EQ(bounding_radius(none), 0.0);
+}
+
+TEST(Plane, NormalisedWithTheSameHalfSpaceAndRefusals) {
+  const Plane p = make_plane(Vec3(0, 0, -4), 8, 0.25, 0.1);
+  expect_vec(p.normal, Vec3(0, 0, -1));
+  EXPECT_EQ(p.offset, 2.0);  // -4 z >= 8  <=>  -z >= 2
+  EXPECT_EQ(p.restitution, 0.25);
+  EXPECT_EQ(p.friction, 0.1);
+  EXPECT_EQ(signed_distance(p, Vec3(0, 0, -5)), 3.0);
+  EXPECT_THROW(make_plane(Vec3::Zero(), 0), std::invalid_argument);
+  EXPECT_THROW(make_plane(Vec3(0, NAN, 0), 0), std::invalid_argument);
+  EXPECT_THROW(make_plane(Vec3(0, 1, 0), INFINITY), std::invalid_argument);
+  EXPECT_THROW(make_plane(Vec3(0, 1, 0), 0, 1.5, 0.5), std::invalid_argument);
+  EXPECT_THROW(make_plane(Vec3(0, 1, 0), 0, 0.5, -0.1), std::invalid_argument);
+  EXPECT_EQ(material_problem(-0.5, 0), "restitution must be in [0, 1], got -0.5");
+  EXPECT_EQ(material_problem(0, NAN), "friction must be finite and >= 0, got nan");
+  EXPECT_DOUBLE_EQ(mix_friction(0.4, 0.9), 0.6);
+  EXPECT_EQ(mix_restitution(0.2, 0.7), 0.7);
+}
+
+}  // namespace
+}  // namespace rigidlab
