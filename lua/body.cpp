@@ -126,7 +126,8 @@ int body_call(lua_State* L) {
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
   static const char* const fields[] = {"mass", "inertia", "position", "orientation", "velocity",
-                                       "angular_velocity", "static", nullptr};
+                                       "angular_velocity", "static", "restitution", "friction",
+                                       nullptr};
   check_fields(L, 1, fields);
   double mass = 0.0;
   const bool is_static = read_mass(L, mass);
@@ -152,6 +153,7 @@ int body_call(lua_State* L) {
     b = make_or_raise(L, [&] { return make_body(mass, tensor); });
   }
   read_state(L, b);
+  read_material_fields(L, 1, b.restitution, b.friction);
   push_new_body(L, b);
   return 1;
 }
@@ -161,9 +163,11 @@ int shaped_body(lua_State* L, ShapeKind kind) {
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
   static const char* const sphere_fields[] = {"mass", "radius", "position", "orientation",
-                                              "velocity", "angular_velocity", "static", nullptr};
+                                              "velocity", "angular_velocity", "static",
+                                              "restitution", "friction", nullptr};
   static const char* const box_fields[] = {"mass", "size", "position", "orientation",
-                                           "velocity", "angular_velocity", "static", nullptr};
+                                           "velocity", "angular_velocity", "static",
+                                           "restitution", "friction", nullptr};
   check_fields(L, 1, kind == ShapeKind::sphere ? sphere_fields : box_fields);
   double radius = 0.0;
   Vec3 size = Vec3::Zero();
@@ -189,6 +193,7 @@ int shaped_body(lua_State* L, ShapeKind kind) {
     });
   }
   read_state(L, b);
+  read_material_fields(L, 1, b.restitution, b.friction);
   push_new_body(L, b);
   return 1;
 }
@@ -211,6 +216,8 @@ bool push_field(lua_State* L, const Body& b, const char* key) {
   else if (is("inv_inertia")) push_mat3(L, b.inverse_inertia);
   else if (is("static")) lua_pushboolean(L, is_static(b));
   else if (is("shape")) lua_pushstring(L, shape_name(b.shape.kind));
+  else if (is("restitution")) lua_pushnumber(L, b.restitution);
+  else if (is("friction")) lua_pushnumber(L, b.friction);
   else if (is("radius")) {
     if (b.shape.kind == ShapeKind::sphere) lua_pushnumber(L, b.shape.radius);
     else lua_pushnil(L);
@@ -224,8 +231,8 @@ bool push_field(lua_State* L, const Body& b, const char* key) {
 }
 
 constexpr const char* field_list =
-    "position, orientation, velocity, angular_velocity (read/write); mass, inv_mass, inertia, "
-    "inv_inertia, static, shape, radius, size (read-only)";
+    "position, orientation, velocity, angular_velocity, restitution, friction (read/write); "
+    "mass, inv_mass, inertia, inv_inertia, static, shape, radius, size (read-only)";
 
 int body_index(lua_State* L) {
   const BodyHandle& handle = check_body_handle(L, 1);
@@ -260,18 +267,31 @@ Quat new_orientation(lua_State* L) {
   return q->normalized();
 }
 
+// b.restitution = e or b.friction = μ, the value at index 3 (engine/plane.hpp's rules).
+void set_material(lua_State* L, Body& b, bool restitution) {
+  const char* key = restitution ? "restitution" : "friction";
+  if (lua_type(L, 3) != LUA_TNUMBER)
+    luaL_error(L, "body.%s: number expected, got %s", key, luaL_typename(L, 3));
+  const double x = lua_tonumber(L, 3);
+  const std::string problem = restitution ? material_problem(x, b.friction)
+                                          : material_problem(b.restitution, x);
+  if (!problem.empty()) luaL_error(L, "body.%s", problem.c_str());
+  (restitution ? b.restitution : b.friction) = x;
+}
+
 int body_newindex(lua_State* L) {
   const BodyHandle& handle = check_body_handle(L, 1);
   const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
   const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
+  const bool material = is("restitution") || is("friction");
   const bool state = is("position") || is("orientation") || is("velocity") ||
-                     is("angular_velocity");
+                     is("angular_velocity") || material;
   if (!state) {
     if (push_field(L, handle.body(), key))
       luaL_error(L, "body.%s is read-only (mass properties and shape are fixed when the body "
                     "is made)", key);
     luaL_error(L, "body has no field '%s' to set (settable: position, orientation, velocity, "
-                  "angular_velocity)", luaL_tolstring(L, 2, nullptr));
+                  "angular_velocity, restitution, friction)", luaL_tolstring(L, 2, nullptr));
   }
   if (handle.store->stepping())
     luaL_error(L, "cannot set body.%s during world:step (force callbacks may only apply forces)",
@@ -279,6 +299,10 @@ int body_newindex(lua_State* L) {
   if (is("orientation")) {
     const Quat q = new_orientation(L);
     handle.body().orientation = q;
+    return 0;
+  }
+  if (material) {
+    set_material(L, handle.body(), is("restitution"));
     return 0;
   }
   const Vec3 v = new_vec3(L, key);
@@ -453,7 +477,8 @@ const Entry methods[] = {
 
 const Entry metamethods[] = {
     {"__newindex", body_newindex, "body.__newindex", "b.position = v",
-     "Sets position, orientation (normalised), velocity or angular_velocity."},
+     "Sets position, orientation (normalised), velocity, angular_velocity, restitution or\n"
+     "friction."},
     {"__tostring", body_tostring, "body.__tostring", "tostring(b)",
      "Short form: body(sphere, m=1, pos=(0, 1, 0))."},
     {"__gc", body_gc, "body.__gc", "", "Releases the body's storage."},
@@ -466,36 +491,49 @@ const Entry index_entry[] = {
 const Entry constructors[] = {
     {"sphere", body_sphere, "body.sphere",
      "body.sphere{mass =, radius =, position =, orientation =, velocity =, angular_velocity =, "
-     "static =} -> body",
+     "static =, restitution =, friction =} -> body",
      "A solid sphere of uniform density: inertia (2/5) m r² on every axis, collision shape a\n"
      "sphere of that radius. static = true (or mass = math.huge) makes it immovable; mass is\n"
-     "then not needed."},
+     "then not needed. restitution (default 0) and friction (default 0.6) as for body{}."},
     {"box", body_box, "body.box",
      "body.box{mass =, size = vec3(w, h, d), position =, orientation =, velocity =, "
-     "angular_velocity =, static =} -> body",
+     "angular_velocity =, static =, restitution =, friction =} -> body",
      "A solid box of uniform density, edges w, h, d along the body's x, y, z: Ixx = m(h²+d²)/12\n"
-     "etc.; collision shape the box. static = true makes it immovable."},
+     "etc.; collision shape the box. static = true makes it immovable. restitution and\n"
+     "friction as for body{}."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry call_entry[] = {
     {"__call", body_call, "body",
      "body{mass =, inertia =, position =, orientation =, velocity =, angular_velocity =, "
-     "static =} -> body",
+     "static =, restitution =, friction =} -> body",
      "A rigid body. mass (kg) and inertia (mat3, kg m², body frame about the COM: symmetric,\n"
      "positive definite, principal moments with A + B >= C) are required; position (m, of the\n"
      "COM), orientation (quat, normalised), velocity (m/s) and angular_velocity (rad/s, world)\n"
      "default to zero / identity. mass = math.huge or static = true makes an immovable body\n"
      "(inverse mass and inverse inertia 0; impulses and forces do nothing to it).\n"
+     "restitution e in [0, 1] (default 0) and friction μ >= 0 (default 0.6) are the surface\n"
+     "material for contacts; a contact uses e = max(ea, eb) and μ = √(μa μb) (Box2D's rule).\n"
      "Shapes: body.sphere{...}, body.box{...}.\n"
-     "Fields: position, orientation, velocity, angular_velocity (read/write); mass, inv_mass,\n"
-     "inertia, inv_inertia, static, shape (\"none\", \"sphere\", \"box\"), radius (spheres),\n"
-     "size (boxes) (read-only).\n"
+     "Fields: position, orientation, velocity, angular_velocity, restitution, friction\n"
+     "(read/write); mass, inv_mass, inertia, inv_inertia, static, shape (\"none\", \"sphere\",\n"
+     "\"box\"), radius (spheres), size (boxes) (read-only).\n"
      "Methods: world_inertia, inv_world_inertia, apply_force, apply_torque, apply_impulse,\n"
      "apply_angular_impulse, point_velocity, to_world, to_local, linear_momentum,\n"
      "angular_momentum, kinetic_energy."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace
+
+void read_material_fields(lua_State* L, int arg, double& restitution, double& friction) {
+  restitution = field_finite(L, arg, "restitution", default_restitution, false);
+  if (!(restitution >= 0.0 && restitution <= 1.0))
+    arg_error(L, arg, "field 'restitution' must be in [0, 1], got %s",
+              format_number(restitution).c_str());
+  friction = field_finite(L, arg, "friction", default_friction, false);
+  if (!(friction >= 0.0))
+    arg_error(L, arg, "field 'friction' must be >= 0, got %s", format_number(friction).c_str());
+}
 
 BodyHandle* test_body(lua_State* L, int index) { return test_tagged<BodyHandle>(L, index, body_tag); }
 

@@ -32,6 +32,10 @@ inline Body& check_body(lua_State* L, int arg) { return check_body_handle(L, arg
 // A new Lua body holding a copy of b in a store of its own.
 BodyHandle& push_new_body(lua_State* L, const Body& b);
 
+// Reads the optional fields restitution (in [0, 1]) and friction (>= 0) of the table at `arg`,
+// with the defaults of engine/plane.hpp; an argument error names the field.
+void read_material_fields(lua_State* L, int arg, double& restitution, double& friction);
+
 // Raises "cannot <what> during world:step (force callbacks may only apply forces)" when the
 // body's world is stepping: only apply_force and apply_torque make sense at an RK4 stage.
 void check_not_stepping(lua_State* L, const BodyHandle& handle, const char* what);

@@ -98,6 +98,34 @@ int check_substeps(lua_State* L, int arg, bool in_table) {
   return static_cast<int>(n);
 }
 
+// The iterations value on top of the stack (velocity sweeps of the contact solver).
+int check_iterations(lua_State* L, int arg, bool in_table) {
+  const int max = ContactSettings::max_iterations;
+  const bool integer = lua_type(L, -1) == LUA_TNUMBER && lua_isinteger(L, -1);
+  const lua_Integer n = integer ? lua_tointeger(L, -1) : 0;
+  if (!integer || n < 1 || n > max) {
+    const char* got = shown_value(L, -1);
+    if (in_table)
+      arg_error(L, arg, "field 'iterations' must be an integer from 1 to %d, got %s", max, got);
+    luaL_error(L, "world.iterations must be an integer from 1 to %d, got %s", max, got);
+  }
+  return static_cast<int>(n);
+}
+
+// The restitution_threshold value on top of the stack (m/s, finite, >= 0).
+double check_threshold(lua_State* L, int arg, bool in_table) {
+  const bool number = lua_type(L, -1) == LUA_TNUMBER;
+  const double x = number ? lua_tonumber(L, -1) : 0.0;
+  if (!number || !std::isfinite(x) || x < 0.0) {
+    const char* got = number ? shown_value(L, -1) : luaL_typename(L, -1);
+    if (in_table)
+      arg_error(L, arg, "field 'restitution_threshold' must be a finite number >= 0 (m/s), got %s",
+                got);
+    luaL_error(L, "world.restitution_threshold must be a finite number >= 0 (m/s), got %s", got);
+  }
+  return x;
+}
+
 // ---- constructor -----------------------------------------------------------------------------
 
 int world_call(lua_State* L) {
@@ -105,7 +133,8 @@ int world_call(lua_State* L) {
   if (lua_isnone(L, 1)) lua_newtable(L);
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  static const char* const fields[] = {"gravity", "integrator", "gyroscopic", "substeps", nullptr};
+  static const char* const fields[] = {"gravity", "integrator", "gyroscopic", "substeps",
+                                       "iterations", "restitution_threshold", nullptr};
   check_fields(L, 1, fields);
   const Vec3 gravity = field_vec3(L, 1, "gravity", Vec3(0, -9.81, 0), false);
   Integrator integrator = Integrator::semi_implicit;
@@ -120,6 +149,10 @@ int world_call(lua_State* L) {
                       "the full Euler equations");
   }
   if (get_field(L, 1, "substeps") != LUA_TNIL) substeps = check_substeps(L, 1, true);
+  ContactSettings contact;
+  if (get_field(L, 1, "iterations") != LUA_TNIL) contact.iterations = check_iterations(L, 1, true);
+  if (get_field(L, 1, "restitution_threshold") != LUA_TNIL)
+    contact.restitution_threshold = check_threshold(L, 1, true);
   lua_settop(L, 1);
 
   void* memory = lua_newuserdatauv(L, sizeof(WorldBox), 2);
@@ -135,6 +168,7 @@ int world_call(lua_State* L) {
   w.set_integrator(integrator);
   w.set_gyroscopic(gyroscopic);
   w.set_substeps(substeps);
+  w.set_contact_settings(contact);
   return 1;
 }
 
@@ -283,6 +317,101 @@ int world_add_drag(lua_State* L) {
   return 0;
 }
 
+// ---- contacts --------------------------------------------------------------------------------
+
+int world_add_plane(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  if (lua_isnoneornil(L, 2)) {  // w:add_plane() is the floor y >= 0
+    lua_settop(L, 1);
+    lua_newtable(L);
+  }
+  if (!lua_istable(L, 2)) type_error(L, 2, "table");
+  check_no_extra_args(L, 2);
+  static const char* const fields[] = {"normal", "offset", "restitution", "friction", nullptr};
+  check_fields(L, 2, fields);
+  const Vec3 normal = field_vec3(L, 2, "normal", Vec3::UnitY(), false);
+  if (!(normal.norm() > 0.0) || !std::isfinite(normal.norm()))
+    arg_error(L, 2, "field 'normal' must be a non-zero vector, got (%s, %s, %s)",
+              format_number(normal.x()).c_str(), format_number(normal.y()).c_str(),
+              format_number(normal.z()).c_str());
+  const double offset = field_finite(L, 2, "offset", 0.0, false);
+  double restitution = 0.0, friction = 0.0;
+  read_material_fields(L, 2, restitution, friction);
+  if (w.world.stepping()) function_error(L, "cannot add a plane during world:step");
+  std::size_t index = 0;
+  call_engine(L, [&] {
+    index = w.world.add_plane(make_plane(normal, offset, restitution, friction));
+  });
+  lua_pushinteger(L, static_cast<lua_Integer>(index) + 1);
+  return 1;
+}
+
+void set_number_field(lua_State* L, const char* name, double x) {
+  lua_pushnumber(L, x);
+  lua_setfield(L, -2, name);
+}
+
+void set_vec3_field(lua_State* L, const char* name, const Vec3& v) {
+  push_vec3(L, v);
+  lua_setfield(L, -2, name);
+}
+
+int world_planes(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  const std::vector<Plane>& planes = w.world.planes();
+  lua_createtable(L, static_cast<int>(planes.size()), 0);
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    lua_createtable(L, 0, 4);
+    set_vec3_field(L, "normal", planes[i].normal);
+    set_number_field(L, "offset", planes[i].offset);
+    set_number_field(L, "restitution", planes[i].restitution);
+    set_number_field(L, "friction", planes[i].friction);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i) + 1);
+  }
+  return 1;
+}
+
+// Sets field `name` of the table on top to the body object of engine index `index`.
+void set_body_field(lua_State* L, const char* name, std::size_t index) {
+  lua_getiuservalue(L, 1, bodies_slot);
+  lua_rawgeti(L, -1, static_cast<lua_Integer>(index) + 1);
+  lua_setfield(L, -3, name);
+  lua_pop(L, 1);
+}
+
+// The touching points of the last substep. A plane contact is reported from the body's side:
+// a = the body, b = nil, plane = its index, normal = the plane's normal (into the body), and
+// the impulses are the ones the body received; between two bodies they are b's (a got the
+// opposite) and the normal points from a to b.
+int world_contacts(lua_State* L) {
+  LuaWorld& w = check_world(L, 1);
+  check_no_extra_args(L, 1);
+  lua_newtable(L);
+  lua_Integer n = 0;
+  for (const ContactInfo& c : w.world.contacts()) {
+    if (!touched(c)) continue;
+    lua_createtable(L, 0, 10);
+    const bool plane = c.a == no_body;
+    set_body_field(L, "a", plane ? c.b : c.a);
+    if (plane) {
+      lua_pushinteger(L, static_cast<lua_Integer>(c.plane) + 1);
+      lua_setfield(L, -2, "plane");
+    } else {
+      set_body_field(L, "b", c.b);
+    }
+    set_vec3_field(L, "point", c.point);
+    set_vec3_field(L, "normal", c.normal);
+    set_number_field(L, "depth", c.depth);
+    set_number_field(L, "normal_impulse", c.normal_impulse);
+    set_vec3_field(L, "friction_impulse", c.friction_impulse);
+    set_number_field(L, "restitution", c.restitution);
+    set_number_field(L, "friction", c.friction);
+    lua_rawseti(L, -2, ++n);
+  }
+  return 1;
+}
+
 // The world userdata is argument 1 of the running w:step on box->running: callbacks get it and
 // the stage time. A Lua error raised inside propagates (as a C++ exception, Lua being compiled
 // as C++) through World::step, which undoes the step.
@@ -425,11 +554,16 @@ int world_index(lua_State* L) {
   else if (std::strcmp(key, "gyroscopic") == 0)
     lua_pushstring(L, gyroscopic_names[static_cast<int>(w.world.gyroscopic())]);
   else if (std::strcmp(key, "substeps") == 0) lua_pushinteger(L, w.world.substeps());
+  else if (std::strcmp(key, "iterations") == 0)
+    lua_pushinteger(L, w.world.contact_settings().iterations);
+  else if (std::strcmp(key, "restitution_threshold") == 0)
+    lua_pushnumber(L, w.world.contact_settings().restitution_threshold);
   else {
     lua_pushvalue(L, 2);
     if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
     luaL_error(L, "world has no field '%s' (fields: time, gravity, integrator, gyroscopic, "
-                  "substeps; methods: see help(\"world\"))", luaL_tolstring(L, 2, nullptr));
+                  "substeps, iterations, restitution_threshold; methods: see help(\"world\"))",
+               luaL_tolstring(L, 2, nullptr));
   }
   return 1;
 }
@@ -439,9 +573,10 @@ int world_newindex(lua_State* L) {
   const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
   const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
   if (is("time")) luaL_error(L, "world.time is read-only (it advances with w:step)");
-  if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps"))
+  if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps") &&
+      !is("iterations") && !is("restitution_threshold"))
     luaL_error(L, "world has no field '%s' to set (settable: gravity, integrator, gyroscopic, "
-                  "substeps)", luaL_tolstring(L, 2, nullptr));
+                  "substeps, iterations, restitution_threshold)", luaL_tolstring(L, 2, nullptr));
   if (w.world.stepping()) luaL_error(L, "cannot set world.%s during world:step", key);
   lua_settop(L, 3);
   if (is("gravity")) {
@@ -457,6 +592,11 @@ int world_newindex(lua_State* L) {
   } else if (is("gyroscopic")) {
     w.world.set_gyroscopic(
         check_option<3, GyroscopicTerm>(L, 3, gyroscopic_names, "gyroscopic", false));
+  } else if (is("iterations") || is("restitution_threshold")) {
+    ContactSettings contact = w.world.contact_settings();
+    if (is("iterations")) contact.iterations = check_iterations(L, 3, false);
+    else contact.restitution_threshold = check_threshold(L, 3, false);
+    w.world.set_contact_settings(contact);
   } else {
     w.world.set_substeps(check_substeps(L, 3, false));
   }
@@ -495,6 +635,26 @@ const Entry methods[] = {
      "(N s/m) and rest_length (m) default 0, so by default the spring pulls the ends together."},
     {"add_drag", world_add_drag, "world:add_drag", "w:add_drag{body =, linear =, angular =}",
      "Linear drag on a body: F = −linear · v (N s/m), τ = −angular · ω (N m s). Default 0."},
+    {"add_plane", world_add_plane, "world:add_plane",
+     "w:add_plane{normal =, offset =, restitution =, friction =} -> index",
+     "A static plane: bodies with a shape (body.sphere, body.box) stay in the half-space\n"
+     "normal·x >= offset. normal (vec3, any non-zero length; default vec3(0, 1, 0)) and offset\n"
+     "(m, default 0) as given: the plane is stored with the unit normal and offset/|normal|.\n"
+     "restitution in [0, 1] (default 0) and friction >= 0 (default 0.6) combine with the\n"
+     "body's as e = max, μ = √(μa μb). Returns the plane's index (w:planes(), contacts)."},
+    {"planes", world_planes, "world:planes", "w:planes() -> {{normal =, offset =, ...}, ...}",
+     "The planes, each as {normal = unit vec3, offset = m, restitution =, friction =}."},
+    {"contacts", world_contacts, "world:contacts", "w:contacts() -> {contact, ...}",
+     "The contact points of the last step (its last substep), each a table\n"
+     "{a = body, b = body or nil, plane = index or nil, point = vec3, normal = vec3, depth =,\n"
+     "normal_impulse =, friction_impulse = vec3, restitution =, friction =}.\n"
+     "Between two bodies the normal points from a to b, b received the impulse\n"
+     "normal_impulse·normal + friction_impulse (N s) and a its opposite. Against a plane, a is\n"
+     "the body, b is nil, the normal is the plane's (into the body) and the impulses are the\n"
+     "body's. point (m) lies midway between the surfaces; depth (m) is the overlap when the\n"
+     "step began (negative: a gap the step closed). Contacts are solved by sequential impulses\n"
+     "(Catto, GDC 2005) with `iterations` sweeps; impacts faster than\n"
+     "restitution_threshold bounce with the pair's restitution."},
     {"kinetic_energy", world_kinetic_energy, "world:kinetic_energy", "w:kinetic_energy() -> number",
      "Σ ½ m v² + ½ ω·I ω over the bodies (J)."},
     {"potential_energy", world_potential_energy, "world:potential_energy",
@@ -511,7 +671,7 @@ const Entry methods[] = {
 
 const Entry metamethods[] = {
     {"__newindex", world_newindex, "world.__newindex", "w.gravity = g",
-     "Sets gravity, integrator, gyroscopic or substeps."},
+     "Sets gravity, integrator, gyroscopic, substeps, iterations or restitution_threshold."},
     {"__tostring", world_tostring, "world.__tostring", "tostring(w)",
      "Short form: world(3 bodies, t=1.5, semi_implicit)."},
     {"__gc", world_gc, "world.__gc", "", "Releases the world; its bodies stay valid."},
@@ -532,16 +692,23 @@ const Entry step_entry[] = {
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry call_entry[] = {
-    {"__call", world_call, "world", "world{gravity =, integrator =, gyroscopic =, substeps =} -> world",
+    {"__call", world_call, "world",
+     "world{gravity =, integrator =, gyroscopic =, substeps =, iterations =, "
+     "restitution_threshold =} -> world",
      "A world of rigid bodies. gravity (vec3, m/s²) default vec3(0, -9.81, 0);\n"
      "integrator: \"euler\" (explicit: positions from the old velocities), \"semi_implicit\"\n"
      "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
      "order on the whole state, gyroscopic term included); gyroscopic, for the Euler methods:\n"
      "\"implicit\" (default; one Newton step on ω × Iω per substep, stable), \"explicit\" (gains\n"
      "energy) or \"off\"; substeps (default 1) per w:step(dt).\n"
-     "Fields: time (read-only), gravity, integrator, gyroscopic, substeps (read/write).\n"
-     "Methods: add, remove, bodies, add_force, add_spring, add_drag, step, kinetic_energy,\n"
-     "potential_energy, energy, linear_momentum, angular_momentum."},
+     "Contacts: bodies with a shape collide with each other and with planes (w:add_plane);\n"
+     "iterations (default 10) velocity sweeps of the contact solver per substep;\n"
+     "restitution_threshold (m/s, default 1): slower impacts do not bounce.\n"
+     "Fields: time (read-only), gravity, integrator, gyroscopic, substeps, iterations,\n"
+     "restitution_threshold (read/write).\n"
+     "Methods: add, remove, bodies, add_force, add_spring, add_drag, add_plane, planes,\n"
+     "contacts, step, kinetic_energy, potential_energy, energy, linear_momentum,\n"
+     "angular_momentum."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 // Registers the methods (w:step with the poll function) into the table at `table_index`.

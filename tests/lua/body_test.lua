@@ -115,7 +115,7 @@ T.case("constructor errors", function()
     .. "definite, A + B >= C): principal moments -1, 1, 1 are not all > 0")
   T.fails(function() return body{mass = 1, inertia = I, colour = "red"} end,
     "bad argument #1 to 'body' (unknown field 'colour' (fields are: mass, inertia, position, "
-    .. "orientation, velocity, angular_velocity, static))")
+    .. "orientation, velocity, angular_velocity, static, restitution, friction))")
   T.fails(function() return body{mass = 1, inertia = I, position = 3} end,
     "bad argument #1 to 'body' (field 'position' must be a vec3, got number)")
   T.fails(function() return body{mass = 1, inertia = I, orientation = vec3()} end,
@@ -154,7 +154,8 @@ T.case("field errors", function()
   T.fails(function() b.inv_mass = 1 end, "body.inv_mass is read-only")
   T.fails(function() b.radius = 2 end, "body.radius is read-only")
   T.fails(function() b.colour = 1 end,
-    "body has no field 'colour' to set (settable: position, orientation, velocity, angular_velocity)")
+    "body has no field 'colour' to set (settable: position, orientation, velocity, angular_velocity, "
+    .. "restitution, friction)")
   T.fails(function() return b.colour end, "body has no field 'colour' (fields: position, orientation")
   T.fails(function() b.position = 1 end, "body.position: vec3 expected, got number")
   T.fails(function() b.velocity = {1, 2, 3} end, "body.velocity: vec3 expected, got table")

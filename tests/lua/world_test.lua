@@ -44,8 +44,10 @@ end)
 
 T.case("spring between two bodies at offset points conserves energy under rk4", function()
   local w = world{integrator = "rk4"}
-  local a = w:add(body.box{mass = 1, size = vec3(1, 0.5, 0.2)})
-  local b = w:add(body.sphere{mass = 2, radius = 0.5, position = vec3(1.5, -0.5, 0.3)})
+  -- Bodies without collision shapes: a box and a ball on these springs would hit each other.
+  local a = w:add(body{mass = 1, inertia = inertia.solid_box(1, 1, 0.5, 0.2)})
+  local b = w:add(body{mass = 2, inertia = inertia.solid_sphere(2, 0.5),
+                       position = vec3(1.5, -0.5, 0.3)})
   w:add_spring{a = a, a_point = vec3(0.5, 0.25, 0.1), b = b, b_point = vec3(0, 0.5, 0), k = 40,
     rest_length = 0.5}
   w:add_spring{a = a, a_point = vec3(-0.5, 0, 0), anchor = vec3(-1, 1, 0), k = 30}
@@ -254,7 +256,8 @@ T.case("constructor and field errors", function()
   T.fails(function() return world{gravity = 9.81} end,
     "bad argument #1 to 'world' (field 'gravity' must be a vec3, got number)")
   T.fails(function() return world{gravty = vec3()} end,
-    "bad argument #1 to 'world' (unknown field 'gravty' (fields are: gravity, integrator, gyroscopic, substeps))")
+    "bad argument #1 to 'world' (unknown field 'gravty' (fields are: gravity, integrator, gyroscopic, "
+    .. "substeps, iterations, restitution_threshold))")
   T.fails(function() return world{integrator = "rk4", gyroscopic = "off"} end,
     "bad argument #1 to 'world' (field 'gyroscopic' is for the Euler integrators: rk4 always "
     .. "integrates the full Euler equations)")
@@ -265,7 +268,8 @@ T.case("constructor and field errors", function()
     "world.integrator must be one of 'euler', 'semi_implicit', 'rk4', got 'verlet'")
   T.fails(function() w.substeps = -1 end, "world.substeps must be an integer from 1 to 10000, got -1")
   T.fails(function() w.bodies = {} end,
-    "world has no field 'bodies' to set (settable: gravity, integrator, gyroscopic, substeps)")
+    "world has no field 'bodies' to set (settable: gravity, integrator, gyroscopic, substeps, "
+    .. "iterations, restitution_threshold)")
   T.fails(function() return w.dt end, "world has no field 'dt' (fields: time, gravity")
   T.equal(w.integrator, "semi_implicit", "unchanged")
 end)
