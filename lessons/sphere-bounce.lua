@@ -1,0 +1,161 @@
+-- A ball dropped on a floor (001 "Collisions"): radius 0.35 m, restitution 0.75, friction
+-- 0.6. Each rebound reaches e² = 0.5625 of the previous height; thrown sideways, friction
+-- makes it spin until it rolls (v = ωR, at 5/7 of its sideways speed); without friction it
+-- never spins.
+
+local radius = 0.35          -- m, 001's SPHERE_RADIUS
+local restitution = 0.75     -- 001's e (its code writes the factor 1 + e = 1.75)
+local friction = 0.6         -- 001's friction
+local mass = 1               -- kg (001 gives none; the outcome does not depend on it)
+local drop_height = 2        -- m, from the floor to the bottom of the ball
+local dt = 1 / 1200          -- s
+
+-- Drops the ball on a floor y ≥ 0 and follows it for `duration` seconds. Returns the world,
+-- the ball, the heights of the bottom of the ball at each apex after a bounce, and the ball's
+-- velocity and spin sampled just after the first bounce.
+local function drop(floor_friction, sideways_speed, duration, step)
+  step = step or dt
+  local w = world{}
+  w:add_plane{normal = vec3(0, 1, 0), offset = 0, restitution = restitution,
+              friction = floor_friction}
+  local ball = w:add(body.sphere{mass = mass, radius = radius, restitution = restitution,
+                                 friction = floor_friction,
+                                 position = vec3(0, radius + drop_height, 0),
+                                 velocity = vec3(sideways_speed, 0, 0)})
+  local apexes, after_first, rising, material = {}, nil, false, nil
+  for _ = 1, math.floor(duration / step + 0.5) do
+    local vy_before = ball.velocity.y
+    w:step(step)
+    local vy = ball.velocity.y
+    if vy_before < 0 and vy > 0 and not after_first then
+      after_first = {velocity = ball.velocity, spin = ball.angular_velocity}
+    end
+    local contact = w:contacts()[1]
+    if contact and not material then material = contact end
+    if vy > 0 then rising = true end
+    if rising and vy <= 0 then
+      apexes[#apexes + 1] = ball.position.y - radius
+      rising = false
+    end
+  end
+  return w, ball, apexes, after_first, material
+end
+
+return lesson{
+  id = "sphere-bounce",
+  title = "A ball on the floor: restitution, friction and rolling",
+  source = "001_8a70f78e0cc79e25.txt, \"Collisions\"",
+  steps = {
+    {
+      title = "Each bounce keeps e² of the height",
+      text = [[
+001 drops a ball of radius 0.35 m on a floor with restitution e = 0.75. At each impact the
+floor reverses the ball's vertical speed and scales it by e; since the height a ball rises
+to grows with the square of its launch speed (h = v²/2g), each rebound reaches e² = 0.5625
+of the previous one. From 2 m: 1.125 m, 0.633 m, 0.356 m, ... In rigidlab both the floor
+(w:add_plane) and the ball carry a restitution and a friction; a contact uses the larger
+restitution and the geometric mean of the frictions (Box2D's rule), so we give both 0.75
+and 0.6. Like Box2D, the world also stops bouncing impacts slower than 1 m/s
+(restitution_threshold), so after a few bounces the ball settles on the floor.
+
+The world steps in time, 1/1200 s here, so the impact is not caught at the exact instant
+of touching: the ball is found slightly inside the floor, pushed out, and the apex is
+sampled at the step where the ball stops rising. Each of these shifts the measured heights
+by a small fraction, so the ratios are checked to ±3 % rather than to rounding error. The
+last table shows that this is the time step at work: halve Δt and the excess of the ratio
+over e² shrinks, roughly in proportion, an error that vanishes as Δt → 0.]],
+      formula = "v' = e·v  ⇒  h' = v'²/(2g) = e²·h,   e² = 0.75² = 0.5625",
+      run = function(ctx)
+        local _, _, apexes, _, contact = drop(friction, 0, 6)
+        ctx:show("the contact's restitution", contact.restitution)
+        ctx:show("the contact's friction", contact.friction)
+        ctx:show("the contact's normal", contact.normal)
+        ctx:expect("e of the ball–floor pair = 0.75", contact.restitution, restitution)
+        local rows, height = {}, drop_height
+        for n = 1, math.min(#apexes, 4) do
+          height = height * restitution ^ 2
+          rows[n] = {n, apexes[n], height, apexes[n] / (n == 1 and drop_height or apexes[n - 1])}
+          ctx:expect("bounce " .. n .. ": height ratio e²",
+                     apexes[n] / (n == 1 and drop_height or apexes[n - 1]), restitution ^ 2,
+                     {abs = 0.03 * restitution ^ 2})
+        end
+        ctx:table({"bounce", "apex height (m)", "e²ⁿ·h₀ (m)", "ratio to previous"}, rows)
+        local excess = {}
+        for i, step in ipairs({1 / 300, 1 / 600, 1 / 1200}) do
+          local _, _, heights = drop(friction, 0, 3, step)
+          excess[i] = {string.format("1/%d", math.floor(1 / step + 0.5)),
+                       heights[2] / heights[1] - restitution ^ 2}
+        end
+        ctx:table({"Δt (s)", "bounce 2 ratio − e²"}, excess)
+        local shrinking = excess[1][2] > excess[2][2] and excess[2][2] > excess[3][2]
+        ctx:expect("each halving of Δt shrinks the excess (1 = yes)", shrinking and 1 or 0, 1)
+      end,
+    },
+    {
+      title = "Friction makes it spin, then roll",
+      text = [[
+Without friction the floor can only push straight up, through the centre of the ball, so
+it cannot turn it. Friction acts at the contact point, sideways, 0.35 m below the centre,
+and that lever arm makes a torque. Throw the ball sideways at 1 m/s: at the first impact
+friction opposes the sliding of the contact point, slowing the centre and spinning the
+ball up at the same time. For a solid ball (I = 2/5·mR²) the sliding stops when the centre
+has kept 5/7 of its speed and the spin has reached ω = v/R: the ball rolls. Coulomb's law
+allows up to μ times the normal impulse, far more than the 2/7·m·v needed here, so by the
+end of the first impact the ball rolls, to within the ±3 % the time step allows, and it
+goes on rolling at that speed: on a flat floor nothing slows a rolling ball.]],
+      formula = "friction impulse j = (2/7)·m·v  ⇒  v' = (5/7)·v,   ω' = v'/R   (rolling)",
+      run = function(ctx)
+        local speed = 1
+        local _, ball, _, first = drop(friction, speed, 6)
+        ctx:show("after the first bounce: v (m/s)", first.velocity)
+        ctx:show("after the first bounce: ω (rad/s)", first.spin)
+        ctx:expect("v_x = 5/7 of 1 m/s", first.velocity.x, 5 / 7 * speed, {abs = 0.03 * 5 / 7})
+        ctx:expect("ω_z = −v_x/R (rolling toward +x)", first.spin.z, -first.velocity.x / radius,
+                   {abs = 0.03 * 5 / 7 / radius})
+        ctx:show("after 6 s: v (m/s)", ball.velocity)
+        ctx:show("after 6 s: ω (rad/s)", ball.angular_velocity)
+        ctx:expect("still rolling after 6 s: ω_z·R = −v_x", ball.angular_velocity.z * radius,
+                   -ball.velocity.x, {abs = 0.03 * 5 / 7})
+        ctx:expect("at 5/7 of 1 m/s", ball.velocity.x, 5 / 7 * speed, {abs = 0.03 * 5 / 7})
+      end,
+    },
+    {
+      title = "No friction, no spin",
+      text = [[
+With friction 0 the same throw bounces exactly as before but never turns: every impulse
+from the floor points straight up through the centre of mass, and a force through the
+centre has no moment. The sideways speed is untouched too.
+
+001's code for this contact has two slips worth knowing. It takes the ball's own contact
+velocity as the relative velocity, then only applies impulses when that velocity points
+away from the floor and pushes the ball down, two sign errors that cancel only if the
+relative velocity is meant as floor minus ball. And its angular factor for friction is
+(I⁻¹(R×t))·t, which for a ball is always zero; the right one is (R×t)·I⁻¹(R×t) = R²/I, so
+its friction impulse is 3.5 times too large and, with 0.6, reverses the sliding instead of
+stopping it: the contact would slide back at 1.1 times its old speed.]],
+      formula = "μ = 0: every impulse ∥ n through the centre  ⇒  ω stays 0, v_x unchanged",
+      run = function(ctx)
+        local _, ball, apexes = drop(0, 1, 4)
+        ctx:show("after 4 s: ω (rad/s)", ball.angular_velocity)
+        ctx:show("after 4 s: v (m/s)", ball.velocity)
+        ctx:expect("no spin", ball.angular_velocity, vec3(0, 0, 0), {abs = 1e-12})
+        ctx:expect("sideways speed unchanged", ball.velocity.x, 1, 1e-12)
+        ctx:expect("it did bounce", #apexes >= 3 and 1 or 0, 1)
+        -- 001's friction step by hand, λ = −0.6·(v·t)/(1/m + angular factor), against the
+        -- mass the contact point really has along t: t·M⁻¹t (002 "Inverse Mass Matrix").
+        local R, t, slip = vec3(0, -radius, 0), vec3(1, 0, 0), 1
+        local inverse_inertia = 1 / (0.4 * mass * radius ^ 2)
+        local document_factor = (inverse_inertia * R:cross(t)):dot(t)
+        local probe = body.sphere{mass = mass, radius = radius}
+        local along_t = t:dot(collide.inverse_mass_matrix(probe, R, R) * t)
+        ctx:show("001's angular factor (I⁻¹(R×t))·t (1/kg)", document_factor)
+        ctx:show("t·M⁻¹t = 1/m + R²/I (1/kg)", along_t)
+        ctx:expect("t·M⁻¹t = 1/m + 5/(2m) = 3.5/m", along_t, 3.5 / mass)
+        local impulse = -friction * slip / (1 / mass + document_factor)
+        local slip_after = slip + impulse * along_t
+        ctx:show("contact slip after 001's friction impulse (m/s)", slip_after)
+        ctx:expect("001's impulse reverses the slip: 1 − 0.6·3.5 = −1.1", slip_after, -1.1)
+      end,
+    },
+  },
+}
