@@ -20,6 +20,18 @@ void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
 }
 
+// The friction directions of a point: the first along its slip (its tangential relative
+// velocity), so that when it slides the Coulomb impulse μ λn opposes the slip, as Coulomb's
+// law has it (with two independent tangents of unequal effective masses the clamped impulse
+// would lean off it: a box sliding down a slope then got 94 % of its friction); any basis when
+// it does not slip.
+void friction_directions(const Vec3& n, const Vec3& slip, Vec3& t1, Vec3& t2) {
+  const double speed = slip.norm();
+  if (!(speed > 1e-9)) return tangent_basis(n, t1, t2);
+  t1 = slip / speed;
+  t2 = n.cross(t1);
+}
+
 // The order of contacts: by the first body (a, or the body of a plane contact), then other
 // bodies before planes, then the other body or plane, then the feature.
 auto sort_key(std::size_t a, std::size_t b, std::size_t plane, std::uint32_t feature) {
@@ -202,7 +214,6 @@ void ContactSolver::add_manifold(const std::vector<Body>& bodies, const Manifold
     c.a = a, c.b = b, c.plane = plane;
     c.slot_a = slot_a, c.slot_b = slot_b, c.feature = p.feature;
     c.normal = m.normal;
-    tangent_basis(c.normal, c.tangent1, c.tangent2);
     c.point = p.point;
     c.separation = -p.depth;
     // Witness points (engine/contacts.hpp): on a at point − n s/2, on b at point + n s/2.
@@ -214,10 +225,12 @@ void ContactSolver::add_manifold(const std::vector<Body>& bodies, const Manifold
     c.radius_b = body_b.shape.kind == ShapeKind::sphere ? body_b.shape.radius : 0.0;
     c.r_a = body_a ? Vec3(p.point - body_a->position) : Vec3::Zero();
     c.r_b = p.point - body_b.position;
+    const Vec3 relative = point_velocity_of(sb, c.r_b) - point_velocity_of(sa, c.r_a);
+    c.approach = c.normal.dot(relative);
+    friction_directions(c.normal, relative - c.approach * c.normal, c.tangent1, c.tangent2);
     c.normal_mass = inverse_or_zero(inverse_effective_mass(sa, c.r_a, sb, c.r_b, c.normal));
     c.tangent_mass1 = inverse_or_zero(inverse_effective_mass(sa, c.r_a, sb, c.r_b, c.tangent1));
     c.tangent_mass2 = inverse_or_zero(inverse_effective_mass(sa, c.r_a, sb, c.r_b, c.tangent2));
-    c.approach = c.normal.dot(point_velocity_of(sb, c.r_b) - point_velocity_of(sa, c.r_a));
     c.bias = c.separation > 0.0 ? c.separation / dt : 0.0;
     c.restitution = mix_restitution(restitution_a, body_b.restitution);
     c.friction = mix_friction(friction_a, body_b.friction);

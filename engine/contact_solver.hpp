@@ -16,6 +16,9 @@
 // λn ≥ 0, friction (λt1, λt2) inside the disk of radius μ λn (the Coulomb cone).
 //
 // Details, each a named scheme:
+// - Friction directions: the first tangent along the point's slip (tangential relative
+//   velocity) before the solve, the second across it; any orthonormal pair when it does not
+//   slip (Duff et al., JCGT 2017). Sliding friction then opposes the slip, as Coulomb's law.
 // - Warm starting: a point that touched in the previous step (same bodies or plane, same
 //   `feature`, engine/contacts.hpp) starts from the impulses it ended with, scaled by the ratio
 //   of the time steps; the friction impulse is kept as a world vector and re-projected on the

@@ -16,17 +16,22 @@ std::string material_problem(double restitution, double friction) {
 
 Plane make_plane(const Vec3& normal, double offset, double restitution, double friction) {
   if (!is_finite(normal)) throw std::invalid_argument("normal must be finite");
-  const double length = normal.norm();
-  // The norm of a finite vector can overflow (components near 1e308): refuse it as well.
-  if (!(length > 0.0) || !std::isfinite(length))
-    throw std::invalid_argument("normal must be a non-zero vector");
+  // Divided by its largest component first, so that neither a tiny (1e-300) nor a huge
+  // (1e300) normal underflows or overflows in the norm.
+  const double largest = normal.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) throw std::invalid_argument("normal must be a non-zero vector");
   if (!std::isfinite(offset))
     throw std::invalid_argument("offset must be finite, got " + format_number(offset));
   const std::string problem = material_problem(restitution, friction);
   if (!problem.empty()) throw std::invalid_argument(problem);
+  const Vec3 scaled = normal / largest;
+  const double length = scaled.norm();
   Plane plane;
-  plane.normal = normal / length;
-  plane.offset = offset / length;
+  plane.normal = scaled / length;
+  plane.offset = offset / largest / length;
+  if (!std::isfinite(plane.offset))
+    throw std::invalid_argument("offset / |normal| must be finite, got " +
+                                format_number(plane.offset) + " (the normal is too short)");
   plane.restitution = restitution;
   plane.friction = friction;
   return plane;

@@ -330,7 +330,7 @@ int world_add_plane(lua_State* L) {
   static const char* const fields[] = {"normal", "offset", "restitution", "friction", nullptr};
   check_fields(L, 2, fields);
   const Vec3 normal = field_vec3(L, 2, "normal", Vec3::UnitY(), false);
-  if (!(normal.norm() > 0.0) || !std::isfinite(normal.norm()))
+  if (normal == Vec3::Zero())
     arg_error(L, 2, "field 'normal' must be a non-zero vector, got (%s, %s, %s)",
               format_number(normal.x()).c_str(), format_number(normal.y()).c_str(),
               format_number(normal.z()).c_str());

@@ -347,6 +347,10 @@ TEST(Plane, NormalisedWithTheSameHalfSpaceAndRefusals) {
   EXPECT_EQ(p.restitution, 0.25);
   EXPECT_EQ(p.friction, 0.1);
   EXPECT_EQ(signed_distance(p, Vec3(0, 0, -5)), 3.0);
+  // Tiny and huge normals: the same half-space, without underflow or overflow.
+  EXPECT_EQ(make_plane(Vec3(0, 1e-300, 0), 2e-300).offset, 2.0);
+  EXPECT_EQ(make_plane(Vec3(3e300, 0, 4e300), 1e300).normal, Vec3(0.6, 0, 0.8));
+  EXPECT_THROW(make_plane(Vec3(0, 1e-300, 0), 1e10), std::invalid_argument);  // offset 1e310
   EXPECT_THROW(make_plane(Vec3::Zero(), 0), std::invalid_argument);
   EXPECT_THROW(make_plane(Vec3(0, NAN, 0), 0), std::invalid_argument);
   EXPECT_THROW(make_plane(Vec3(0, 1, 0), INFINITY), std::invalid_argument);

@@ -118,6 +118,41 @@ TEST(WorldContacts, BallPushedAlongTheFloorEndsRollingAtFiveSevenths) {
   }
 }
 
+// A body on a slope of angle θ (friction μ on both surfaces): from 1 s to 2 s after release,
+// its speed gains a (m/s²) · 1 s. Returns a.
+double slope_acceleration(Body body, double theta_degrees, double mu, double height) {
+  const double theta = theta_degrees * M_PI / 180.0;
+  const Vec3 normal(-std::sin(theta), std::cos(theta), 0.0);  // downhill is +x
+  World w;
+  w.add_plane(make_plane(normal, 0.0, 0.0, mu));
+  body.friction = mu;
+  body.orientation = quat_from_axis_angle(Vec3(0, 0, 1), theta);
+  body.position = height * normal;
+  w.add(body);
+  w.step(1.0 / 60.0, 60);
+  const double v1 = w.bodies()[0].velocity.norm();
+  w.step(1.0 / 60.0, 60);
+  return w.bodies()[0].velocity.norm() - v1;
+}
+
+TEST(WorldContacts, InclinedPlaneCoulombAndRolling) {
+  // A box stays below the friction angle (tan 20° < 0.5) and slides above it with
+  // a = g (sin θ − μ cos θ) (Coulomb: friction μ N against the slip); a ball rolls down at
+  // a = 5/7 g sin θ (I = 2/5 m r², no slip while tan θ <= 7/2 μ).
+  const double g = 9.81, mu = 0.5;
+  const Body box = make_box_body(1.0, Vec3(0.4, 0.2, 0.4));
+  const Body ball = make_sphere_body(1.0, 0.2);
+  EXPECT_NEAR(slope_acceleration(box, 20, mu, 0.1), 0.0, 1e-9);
+  for (double degrees : {30.0, 40.0}) {
+    const double theta = degrees * M_PI / 180.0;
+    EXPECT_NEAR(slope_acceleration(box, degrees, mu, 0.1),
+                g * (std::sin(theta) - mu * std::cos(theta)), 1e-6)
+        << degrees;
+    EXPECT_NEAR(slope_acceleration(ball, degrees, mu, 0.2), 5.0 / 7.0 * g * std::sin(theta), 1e-6)
+        << degrees;
+  }
+}
+
 TEST(WorldContacts, BallAtRestDriftsLessThanAMillimetreInTenSeconds) {
   for (Integrator integrator : all_integrators) {
     World w;
