@@ -37,7 +37,10 @@
 //   SolvePositionConstraints) on the separation recomputed from each point's anchors,
 //   C = clamp(β (s + slop), −max_correction, 0), moving the bodies by −C/K along n. Only
 //   positions change, so overlap is removed without adding energy (Baumgarte's velocity
-//   bias would throw stacked bodies up).
+//   bias would throw stacked bodies up). Within a manifold the correction is first applied at
+//   the centroid with the mean separation, then to the points Jacobi-style (all measured at
+//   the same poses, each applying 1/count of its correction), so a box sunk evenly rises
+//   straight instead of being tipped corner after corner.
 // - Impacts are solved manifold by manifold first (a coarse correction before Gauss-Seidel):
 //   when the centroid of a manifold must change its normal speed by more than impact_speed,
 //   its points first get equal shares of the impulse that brings the centroid to the mean
@@ -202,6 +205,9 @@ class ContactSolver {
   void apply_restitution();
   void store_results(double dt);
   std::size_t write_back(std::vector<Body>& bodies);
+  void witnesses(const std::vector<Body>& bodies, const Constraint& c, Vec3& pa, Vec3& pb) const;
+  void move_apart(std::vector<Body>& bodies, const Constraint& c, const Vec3& point,
+                  double correction);
 
   std::vector<SolverBody> solver_bodies_;  // slot 0: the ground (planes, static bodies)
   std::vector<std::uint32_t> slot_of_;     // by body index; 0 when not in a contact yet

@@ -187,6 +187,22 @@ TEST(ContactSolver, PositionCorrectionRecurrence) {
   EXPECT_NEAR(bodies[0].position.y(), -5 + s.position_iterations * s.max_correction, 1e-12);
 }
 
+TEST(ContactSolver, EvenlySunkBoxRisesWithoutTilting) {
+  // A box 0.1 m into the floor on all four corners, turned about the vertical: its manifold is
+  // corrected at the centroid first, so it rises straight (corner after corner would tip it).
+  Body box = make_box_body(1.0, Vec3(1.0, 0.4, 0.6));
+  box.position = Vec3(0, 0.1, 0);
+  box.orientation = quat_from_axis_angle(Vec3(0, 1, 0), 0.4);
+  std::vector<Body> bodies{box};
+  ContactSolver solver;
+  solver.solve_velocities(bodies, floor_plane(), no_gravity, dt, ContactVelocities::current);
+  solver.correct_positions(bodies);
+  EXPECT_GT(bodies[0].position.y(), 0.1 + 0.01);
+  EXPECT_NEAR(bodies[0].position.x(), 0.0, 1e-12);
+  EXPECT_NEAR(bodies[0].position.z(), 0.0, 1e-12);
+  EXPECT_NEAR(bodies[0].orientation.angularDistance(box.orientation), 0.0, 1e-12);
+}
+
 TEST(ContactSolver, StaticBodiesNeverMove) {
   Body ground = make_box_body(1.0, Vec3(4, 1, 4));
   make_static(ground);
