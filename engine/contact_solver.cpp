@@ -126,20 +126,12 @@ std::uint32_t ContactSolver::slot_for(const std::vector<Body>& bodies, std::size
   return slot_of_[index];
 }
 
-void ContactSolver::find_contacts(std::vector<Body>& bodies, const std::vector<Plane>& planes,
-                                  const Vec3& gravity, double dt, ContactVelocities velocities) {
-  for (std::size_t s = 1; s < solver_bodies_.size(); ++s)
-    if (solver_bodies_[s].index < slot_of_.size()) slot_of_[solver_bodies_[s].index] = 0;
-  slot_of_.resize(bodies.size(), 0);
-  solver_bodies_.resize(1);
-  solver_bodies_[0] = SolverBody{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
-                                 Mat3::Zero(), 0.0,          no_body};
-  constraints_.clear();
-  manifold_begin_.clear();
-
-  // Broad phase: bounding spheres grown by how far the body can move in the step (its speed
-  // bound |v| + |ω| R after this step's forces), sorted along x (sweep and prune).
+// Broad phase: bounding spheres grown by how far the body can move in the step (its speed
+// bound |v| + |ω| R after this step's forces), sorted along x (sweep and prune).
+void ContactSolver::build_proxies(const std::vector<Body>& bodies, const Vec3& gravity, double dt,
+                                  ContactVelocities velocities) {
   const double half_margin = 0.5 * settings.speculative_distance;
+  const double h = force_time(velocities, dt);
   proxies_.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
@@ -147,11 +139,10 @@ void ContactSolver::find_contacts(std::vector<Body>& bodies, const std::vector<P
     const double radius = bounding_radius(b.shape);
     double speed = 0.0;
     if (!is_static(b)) {
-      Vec3 v = b.velocity;
-      double spin = b.angular_velocity.norm();
-      const double h = force_time(velocities, dt);
-      v += h * (b.inverse_mass * b.force + gravity);
-      spin += h * b.inverse_inertia.trace() * b.torque.norm();  // ≥ |I⁻¹τ|: I⁻¹ is SPD
+      const Vec3 v = b.velocity + h * (b.inverse_mass * b.force + gravity);
+      // trace(I⁻¹) ≥ the largest eigenvalue of I⁻¹ (it is SPD), so this bounds |ω + h I⁻¹τ|.
+      const double spin =
+          b.angular_velocity.norm() + h * b.inverse_inertia.trace() * b.torque.norm();
       speed = v.norm() + spin * radius;
     }
     // Capped so that absurd speeds (1e300 m/s) cannot make the margins overflow to infinity.
@@ -162,17 +153,29 @@ void ContactSolver::find_contacts(std::vector<Body>& bodies, const std::vector<P
   std::sort(proxies_.begin(), proxies_.end(), [](const Proxy& p, const Proxy& q) {
     return p.min_x < q.min_x || (p.min_x == q.min_x && p.index < q.index);
   });
+}
 
+void ContactSolver::find_contacts(std::vector<Body>& bodies, const std::vector<Plane>& planes,
+                                  const Vec3& gravity, double dt, ContactVelocities velocities) {
+  for (std::size_t s = 1; s < solver_bodies_.size(); ++s)
+    if (solver_bodies_[s].index < slot_of_.size()) slot_of_[solver_bodies_[s].index] = 0;
+  slot_of_.resize(bodies.size(), 0);
+  solver_bodies_.resize(1);
+  solver_bodies_[0] = SolverBody{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                                 Mat3::Zero(), 0.0,          no_body};
+  constraints_.clear();
+  manifold_begin_.clear();
+  build_proxies(bodies, gravity, dt, velocities);
+  auto slot = [&](std::size_t index) { return slot_for(bodies, index, gravity, dt, velocities); };
   for (const Proxy& p : proxies_) {
     const Body& b = bodies[p.index];
     if (is_static(b)) continue;
+    const double margin = settings.speculative_distance + p.sweep;
     for (std::size_t k = 0; k < planes.size(); ++k) {
-      const double margin = settings.speculative_distance + p.sweep;
       if (signed_distance(planes[k], b.position) - p.radius > margin) continue;
       const Manifold m = collide_shape_plane(b.shape, pose_of(b), planes[k], margin);
       if (m.count > 0)
-        add_manifold(bodies, m, no_body, p.index, k, &planes[k], dt, 0,
-                     slot_for(bodies, p.index, gravity, dt, velocities));
+        add_manifold(bodies, m, no_body, p.index, k, &planes[k], dt, 0, slot(p.index));
     }
   }
   for (std::size_t i = 0; i < proxies_.size(); ++i) {
@@ -188,10 +191,7 @@ void ContactSolver::find_contacts(std::vector<Body>& bodies, const std::vector<P
       if ((body_b.position - body_a.position).squaredNorm() > reach * reach) continue;
       const Manifold m =
           collide_shapes(body_a.shape, pose_of(body_a), body_b.shape, pose_of(body_b), margin);
-      if (m.count > 0)
-        add_manifold(bodies, m, a, b, no_plane, nullptr, dt,
-                     slot_for(bodies, a, gravity, dt, velocities),
-                     slot_for(bodies, b, gravity, dt, velocities));
+      if (m.count > 0) add_manifold(bodies, m, a, b, no_plane, nullptr, dt, slot(a), slot(b));
     }
   }
 }

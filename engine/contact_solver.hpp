@@ -186,6 +186,8 @@ class ContactSolver {
 
   std::uint32_t slot_for(const std::vector<Body>& bodies, std::size_t index, const Vec3& gravity,
                          double dt, ContactVelocities velocities);
+  void build_proxies(const std::vector<Body>& bodies, const Vec3& gravity, double dt,
+                     ContactVelocities velocities);
   void find_contacts(std::vector<Body>& bodies, const std::vector<Plane>& planes,
                      const Vec3& gravity, double dt, ContactVelocities velocities);
   void add_manifold(const std::vector<Body>& bodies, const Manifold& m, std::size_t a,
