@@ -5,77 +5,8 @@
 # Usage: repl_terminal_test.sh PATH_TO_RIGIDLAB
 set -euo pipefail
 source "$(dirname "$0")/testlib.sh" "$1"
-
-if ! command -v tmux >/dev/null; then
-  echo "tmux is not installed: skipping the terminal tests"
-  exit 77
-fi
-unset TMUX
-socket=$scratch/tmux.socket
-trap 'tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"' EXIT
-home=$scratch/home
-mkdir "$home"
+source "$(dirname "$0")/terminal.sh"
 history=$home/.rigidlab_history
-
-# start ENV_ASSIGNMENTS...: rigidlab in a new 100x40 terminal; its exit status goes to
-# $scratch/status when it ends. With $stderr_file set, stderr goes there, not to the screen.
-stderr_file=""
-start() {
-  rm -f "$scratch/status"
-  local redirect=""
-  [[ -n $stderr_file ]] && redirect="2>'$stderr_file'"
-  tmux -S "$socket" new-session -d -x 100 -y 40 \
-    "cd '$scratch' && env $* '$rigidlab' $redirect; echo \$? >'$scratch/status'"
-}
-screen() { tmux -S "$socket" capture-pane -p -J 2>/dev/null || true; }
-type_text() { tmux -S "$socket" send-keys -l "$1"; }
-key() { tmux -S "$socket" send-keys "$@"; }
-enter() { type_text "$1"; key Enter; }
-
-# wait_for NAME REGEX: until a line of the screen matches REGEX (extended), 5 s at most.
-wait_for() {
-  case_name=$1
-  local deadline=$((SECONDS + 5))
-  until screen | grep -qE -- "$2"; do
-    if ((SECONDS > deadline)); then
-      fail "no line matching /$2/ on the screen:"
-      screen | sed '/^$/d; s/^/    | /'
-      return 0
-    fi
-    sleep 0.05
-  done
-  pass
-}
-
-# wait_exit NAME STATUS: until rigidlab has ended, with that status.
-wait_exit() {
-  case_name=$1
-  local deadline=$((SECONDS + 5))
-  until [[ -s $scratch/status ]]; do
-    if ((SECONDS > deadline)); then
-      fail "rigidlab did not exit"
-      return 0
-    fi
-    sleep 0.05
-  done
-  [[ $(cat "$scratch/status") == "$2" ]] && pass || fail "exit status $(cat "$scratch/status"), want $2"
-}
-
-prompt_count() { screen | grep -cE '^> ' || true; }
-# wait_prompt NAME: until a new `> ` prompt has appeared after the last command.
-wait_prompt() {
-  case_name=$1
-  local want=$2 deadline=$((SECONDS + 5))
-  until (($(prompt_count) >= want)); do
-    if ((SECONDS > deadline)); then
-      fail "no new prompt"
-      screen | sed '/^$/d; s/^/    | /'
-      return 0
-    fi
-    sleep 0.05
-  done
-  pass
-}
 
 start HOME="$home"
 wait_for "banner" '^rigidlab [0-9.]+ \(Lua 5\.4\.[0-9]+\) — help\(\) lists topics, Ctrl-D exits$'

@@ -1,0 +1,79 @@
+# Helpers for the tests that drive rigidlab in a real terminal through tmux (sourced after
+# testlib.sh, not a test itself). Exits 77 (CTest: skipped) when tmux is not installed.
+if ! command -v tmux >/dev/null; then
+  echo "tmux is not installed: skipping the terminal tests"
+  exit 77
+fi
+unset TMUX
+socket=$scratch/tmux.socket
+trap 'tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"' EXIT
+home=$scratch/home
+mkdir "$home"
+
+# start [ENV_ASSIGNMENT...] [-- ARGUMENT...]: rigidlab with those arguments in a new 100x40
+# terminal; its exit status goes to $scratch/status when it ends. With $stderr_file set,
+# stderr goes there, not to the screen. With $linger set, the terminal stays open after
+# rigidlab has ended, so its last screen can still be read.
+stderr_file=""
+linger=""
+start() {
+  rm -f "$scratch/status"
+  local environment=() arguments=""
+  while (($# > 0)) && [[ $1 != -- ]]; do environment+=("$1"); shift; done
+  (($# > 0)) && shift
+  for argument in "$@"; do arguments+=" '$argument'"; done
+  local redirect=""
+  [[ -n $stderr_file ]] && redirect="2>'$stderr_file'"
+  tmux -S "$socket" new-session -d -x 100 -y 40 \
+    "cd '$scratch' && env ${environment[*]} '$rigidlab'$arguments $redirect; echo \$? >'$scratch/status'${linger:+; sleep 60}"
+}
+screen() { tmux -S "$socket" capture-pane -p -J 2>/dev/null || true; }
+type_text() { tmux -S "$socket" send-keys -l "$1"; }
+key() { tmux -S "$socket" send-keys "$@"; }
+enter() { type_text "$1"; key Enter; }
+
+# wait_for NAME REGEX: until a line of the screen matches REGEX (extended), 5 s at most.
+wait_for() {
+  case_name=$1
+  local deadline=$((SECONDS + 5))
+  until screen | grep -qE -- "$2"; do
+    if ((SECONDS > deadline)); then
+      fail "no line matching /$2/ on the screen:"
+      screen | sed '/^$/d; s/^/    | /'
+      return 0
+    fi
+    sleep 0.05
+  done
+  pass
+}
+
+# wait_exit NAME STATUS: until rigidlab has ended, with that status.
+wait_exit() {
+  case_name=$1
+  local deadline=$((SECONDS + 5))
+  until [[ -s $scratch/status ]]; do
+    if ((SECONDS > deadline)); then
+      fail "rigidlab did not exit"
+      return 0
+    fi
+    sleep 0.05
+  done
+  [[ $(cat "$scratch/status") == "$2" ]] && pass || fail "exit status $(cat "$scratch/status"), want $2"
+}
+
+prompt_count() { screen | grep -cE '^> ' || true; }
+# wait_prompt NAME: until a new `> ` prompt has appeared after the last command.
+wait_prompt() {
+  case_name=$1
+  local want=$2 deadline=$((SECONDS + 5))
+  until (($(prompt_count) >= want)); do
+    if ((SECONDS > deadline)); then
+      fail "no new prompt"
+      screen | sed '/^$/d; s/^/    | /'
+      return 0
+    fi
+    sleep 0.05
+  done
+  pass
+}
+
