@@ -108,8 +108,9 @@ written out in four lines of Lua right in this lesson. They agree to rounding.]]
           end
           worst = math.max(worst, (engine.x[i] - x):norm(), (engine.v[i] - v):norm())
           local force = net_force(engine.x[i], engine.v[i])
-          rows[i] = {engine.t[i], engine.x[i].x, engine.x[i].y, engine.v[i].x, engine.v[i].y,
-                     force.x, force.y}
+          local function g6(value) return string.format("%.6g", value) end   -- fits 80 columns
+          rows[i] = {engine.t[i], g6(engine.x[i].x), g6(engine.x[i].y), g6(engine.v[i].x),
+                     g6(engine.v[i].y), g6(force.x), g6(force.y)}
         end
         ctx:table({"t (s)", "x (m)", "y (m)", "vx (m/s)", "vy (m/s)", "Fx (N)", "Fy (N)"}, rows)
         ctx:expect("motion.simulate = the recipe by hand, largest difference", worst, 0,
