@@ -155,8 +155,13 @@ inertia tensor) gets a sharp push, an impulse of 2 N·s: through the COM it slid
         ctx:show("1 m to the side: v (m/s)", off_centre.velocity)
         ctx:show("1 m to the side: ω (rad/s)", off_centre.angular_velocity)
         ctx:expect("v = J/m still", off_centre.velocity, impulse / mass, 1e-12)
-        ctx:expect("ω = I⁻¹(r × J)", off_centre.angular_velocity,
-                   inertia_com:inverse() * offset:cross(impulse), 1e-12)
+        -- The tensor about the COM (1.5, 1, 0.5) by hand, Σ mᵢ((rᵢ·rᵢ)E − rᵢ⊗rᵢ) with rᵢ the
+        -- offsets (−1.5, −1, −0.5), (1.5, −1, −0.5), (−0.5, 1, 0.5):
+        local by_hand = mat3{{7.5, 3, 1.5}, {3, 9, -3}, {1.5, -3, 13.5}}
+        ctx:show("I about the COM (kg·m²)", inertia_com)
+        ctx:expect("I = Σ mᵢ((rᵢ·rᵢ)E − rᵢ⊗rᵢ), by hand", inertia_com, by_hand, 1e-12)
+        ctx:expect("ω = I⁻¹(r × J) = (−1/15, 2/25, 13/75)", off_centre.angular_velocity,
+                   vec3(-1 / 15, 2 / 25, 13 / 75), 1e-12)
         ctx:show("angular momentum about the COM (kg·m²/s)", off_centre:angular_momentum())
         ctx:expect("L = r × J = (1, 0, 0) × (0, 2, 0)", off_centre:angular_momentum(),
                    vec3(0, 0, 2), 1e-12)
