@@ -23,7 +23,8 @@ end
 return lesson{
   id = "angular-velocity",
   title = "Angular velocity: turning a straight-line speed into a rate of turning",
-  source = "001_8a70f78e0cc79e25.txt, opening section (before \"System Of Particles\")",
+  source = "001_8a70f78e0cc79e25.txt, \"Demystifying Rotational Dynamics in Rigid Bodies\" " ..
+           "(the opening section, before \"System Of Particles\")",
   steps = {
     {
       title = "How fast is the angle changing?",
