@@ -27,7 +27,8 @@ end
 return lesson{
   id = "torque",
   title = "Torque, moment of inertia and angular impulse of one particle",
-  source = "001_8a70f78e0cc79e25.txt, opening section (before \"System Of Particles\")",
+  source = "001_8a70f78e0cc79e25.txt, \"Demystifying Rotational Dynamics in Rigid Bodies\" " ..
+           "(the opening section, before \"System Of Particles\")",
   steps = {
     {
       title = "Torque and the particle's resistance to turning",
@@ -38,8 +39,9 @@ the torque, is the force times the arm, τ = r·F = 2π N·m, and in 3D it is th
 product r × F, pointing along the axis the push turns about.
 
 How strongly the particle resists being turned grows with the square of its distance,
-I = m·r² = 4 kg·m²: further out it has farther to go for the same angle (one factor r),
-and the push has that arm against it (the other). rigidlab's inertia.point gives the
+I = m·r² = 4 kg·m²: further out, the same angular acceleration α means a larger linear
+acceleration r·α and so a larger force m·r·α (one factor r), and a force acting on an arm
+r takes r times as much torque (the other). rigidlab's inertia.point gives the
 particle's whole tensor about the pivot, and inertia.about_axis reads its moment about z.
 Their ratio is the angular acceleration, α = τ/I = 2π/4 = π/2 rad/s², the document's value.
 
