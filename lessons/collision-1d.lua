@@ -40,7 +40,8 @@ end
 return lesson{
   id = "collision-1d",
   title = "A head-on elastic collision: the impulse J",
-  source = "001_8a70f78e0cc79e25.txt, \"System Of Particles\", \"Appendix C\"",
+  source = "001_8a70f78e0cc79e25.txt, \"System Of Particles\", " ..
+           "\"Appendix C - Deriving Collision Impulses Using Conservation Laws Only\"",
   steps = {
     {
       title = "Equal masses swap their velocities",
@@ -68,8 +69,8 @@ like one 4 kg particle, so mb = 4 and 1/mb = 0.25. The impulse grows to
 J = −2·(0 − 2)/(1 + 0.25) = 3.2 N·s; the heavy body leaves at 3.2/4 = 0.8 m/s, and the light
 particle, having given away more momentum than it had, bounces back at 2 − 3.2 = −1.2 m/s.
 
-A slip in 001: it writes vb' = vb − J/mb and then evaluates 0 + 3.2/4 = 0.8. The number is
-right, the sign in the formula is not: b receives +J (Newton's third law, Ja = −Jb), so
+A slip in 001: for both targets it writes vb' = vb − J/mb and then evaluates 0 + 2/1 = 2
+and 0 + 3.2/4 = 0.8. The numbers are right, the sign in the formula is not: b receives +J (Newton's third law, Ja = −Jb), so
 vb' = vb + J/mb. With the minus sign as printed, b would move at −0.8 m/s, into a.]],
       formula = "J = −2·(0 − 2)/(1/1 + 1/4) = 3.2\n" ..
                 "va' = 2 − 3.2/1 = −1.2,   vb' = 0 + 3.2/4 = 0.8",
@@ -86,7 +87,13 @@ collision, total kinetic energy is kept. Dividing the energy equation by the mom
 equation leaves va + va' = vb + vb', and solving gives va' directly, without ever naming J.
 These closed forms are independent of the impulse formula, so they make a good check of
 collide.impulse_1d. They agree for both targets, and for any other mass as well: try a
-heavy target of 1000 kg and the particle comes back at almost its full speed.]],
+heavy target of 1000 kg and the particle comes back at almost its full speed.
+
+A sign to watch in Appendix C: it defines an impulse as the change of momentum,
+J = mv' − mv, but a few lines later writes Ja = ΔPa = ma·va − ma·va', which is minus
+that change. The J of the impulse formula is the momentum a gives away, which is what b
+receives: ma(va − va') = 1·(2 − (−1.2)) = 3.2 = mb(vb' − vb) = 4·0.8. As a change of
+a's momentum it is −3.2.]],
       formula = "va' = (ma − mb)/(ma + mb)·va + 2mb/(ma + mb)·vb,   vb' = va + va' − vb",
       run = function(ctx)
         local rows = {}
@@ -99,6 +106,12 @@ heavy target of 1000 kg and the particle comes back at almost its full speed.]],
         end
         ctx:table({"mb (kg)", "va' impulse", "va' conservation", "vb' impulse",
                    "vb' conservation"}, rows)
+        local J, va_after, vb_after = collide.impulse_1d(1, speed_a, 4, speed_b, elastic)
+        ctx:show("J from the formula (N·s)", J)
+        ctx:show("a's change of momentum ma(va' − va) (kg·m/s)", 1 * (va_after - speed_a))
+        ctx:show("b's change of momentum mb(vb' − vb) (kg·m/s)", 4 * (vb_after - speed_b))
+        ctx:expect("J = what b receives, mb(vb' − vb) = 4·0.8", 4 * (vb_after - speed_b), 3.2)
+        ctx:expect("a's change of momentum = −J = 1·(−1.2 − 2)", 1 * (va_after - speed_a), -3.2)
       end,
     },
     {
