@@ -20,8 +20,8 @@ local function kinetic(m, v) return 0.5 * m * v ^ 2 end
 return lesson{
   id = "restitution",
   title = "Restitution: how much of the bounce survives",
-  source = "001_8a70f78e0cc79e25.txt, \"Appendix C\"; 003_636de12a6b81385f.txt, " ..
-           "\"Collision Response\"",
+  source = "001_8a70f78e0cc79e25.txt, \"Appendix C - Deriving Collision Impulses Using " ..
+           "Conservation Laws Only\"; 003_636de12a6b81385f.txt, \"Collision Response\"",
   steps = {
     {
       title = "One number between sticking and bouncing",
@@ -94,7 +94,8 @@ lacks a minus sign: the bodies separate, so the relative velocity reverses direc
 In 3D the bodies meet along a contact normal N, and only the velocity components along N
 take part: dotting the relative velocity with N turns the problem back into the 1D one.
 Without friction the parts of the velocities across N pass through unchanged. Here two
-balls meet off-centre, with the normal N along their line of centres, and
+balls meet at a slant (their velocities are not along the line of centres), with the
+normal N along that line, and
 collide.resolve is given the contact point between them; its impulse must equal 003's
 formula with the normal components only, and the energy lost must be ½μ(1 − e²)(v_rel·N)².
 The contact point lies on the line of centres, so the impulse passes through both centres
@@ -109,14 +110,16 @@ of mass and neither ball starts to spin.]],
         local before = a:kinetic_energy() + b:kinetic_energy()
         local J = collide.resolve(a, b, {point = vec3(0, 0, 0), normal = normal, restitution = e})
         local closing = (v2 - v1):dot(normal)
-        local p_hat = (e + 1) * closing / (1 / ma + 1 / mb) * normal
+        -- (Subtracting from the zero vector keeps zero components +0 when printed.)
+        local p_hat = vec3() - normal * (-(e + 1) * closing / (1 / ma + 1 / mb))
         ctx:show("N", normal)
         ctx:show("(v2 − v1)·N (m/s)", closing)
         ctx:show("J from collide.resolve (N·s)", J)
         ctx:show("p̂ from 003's formula (N·s)", p_hat)
         ctx:show("v1' (m/s)", a.velocity)
         ctx:show("v2' (m/s)", b.velocity)
-        ctx:expect("J N = −p̂ (resolve's J acts on b, p̂ on body 1)", J * normal, -p_hat, 1e-12)
+        ctx:expect("J N = −p̂ (resolve's J acts on b, p̂ on body 1)", J * normal, vec3() - p_hat,
+                   1e-12)
         ctx:expect("v1' = v1 + p̂/m1", a.velocity, v1 + p_hat / ma, 1e-12)
         ctx:expect("v2' = v2 − p̂/m2", b.velocity, v2 - p_hat / mb, 1e-12)
         ctx:expect("tangential part of v1 unchanged", a.velocity - a.velocity:dot(normal) * normal,
@@ -143,14 +146,15 @@ A 2 kg ball moving at (1, −3, 0) m/s hits a static floor below it with e = 0.5
 points from the ball to the floor, (0, −1, 0), so v1·n = 3 m/s and p̂ = −1.5·2·3·n, an
 impulse of 9 N·s upward. The ball leaves at (1, 1.5, 0) m/s and keeps a quarter (e²) of
 the kinetic energy of its vertical motion. (A small slip in Appendix C, where it lists
-inverse masses of very heavy bodies: 1/2000000000 is printed as 5^-10, meaning 5·10⁻¹⁰.)]],
+inverse masses of very heavy bodies: 1/2000000000 is printed as 5^-10, meaning 5·10⁻¹⁰,
+and 1/(2·10²³) as 5^-24, meaning 5·10⁻²⁴.)]],
       formula = "p̂ = −(e+1)·m1·(v1·n)·n   (1/m2 = 0)",
       run = function(ctx)
         local e, m1, v1, normal = 0.5, 2, vec3(1, -3, 0), vec3(0, -1, 0)
         local floor = body.box{static = true, size = vec3(10, 1, 10), position = vec3(0, -0.6, 0)}
         local ball = body.sphere{mass = m1, radius = 0.1, velocity = v1}
         ctx:show("floor: inverse mass (1/kg)", floor.inv_mass)
-        local p_hat = -(e + 1) * m1 * v1:dot(normal) * normal
+        local p_hat = vec3() - normal * ((e + 1) * m1 * v1:dot(normal))
         local J = collide.resolve(ball, floor, {point = vec3(0, -0.1, 0), normal = normal,
                                                 restitution = e})
         ctx:show("p̂ = −(e+1)m1(v1·n)n (N·s)", p_hat)
