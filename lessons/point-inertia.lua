@@ -24,9 +24,9 @@ return lesson{
       text = [[
 The moment of inertia says how hard it is to change how fast something spins about a given
 axis. For a single small mass it depends on two things only: how much mass there is, and how
-far it sits from the axis. Doubling the mass doubles I; doubling the distance quadruples it,
-because the mass then has twice as far to travel per radian and the same push has to work
-against a lever twice as long.
+far it sits from the axis. Doubling the mass doubles I; doubling the distance quadruples it:
+the same angular acceleration then means twice the linear acceleration, so twice the force,
+and a force on a lever twice as long takes twice the torque.
 
 The r here is the distance from the AXIS, not from the origin. A 2 kg particle at
 (0.9, 1.2, 0.7) m sits 1.5 m from the z axis (√(0.9² + 1.2²)); its height along z does not
