@@ -35,8 +35,8 @@ struct Impulse1D {
 
 // J = −(1 + e)(v_b − v_a)/(m_a⁻¹ + m_b⁻¹) (001_* "System Of Particles" and Appendix C), with b
 // ahead of a on the axis. The formula is applied as written: when v_b > v_a (separating) J is
-// negative. Inverse masses ≥ 0 (0 = immovable), not both 0; e in [0, 1]. Throws
-// std::invalid_argument otherwise.
+// negative. Inverse masses ≥ 0 (0 = immovable), finite, not both 0; e in [0, 1]. Throws
+// std::invalid_argument otherwise, and when the impulse or a velocity overflows.
 Impulse1D impulse_1d(double inverse_mass_a, double velocity_a, double inverse_mass_b,
                      double velocity_b, double restitution);
 
@@ -55,7 +55,8 @@ Mat3 contact_inverse_mass(const Body& a, const Body& b, const Vec3& point);
 // 001_* Appendix D: 1/(J W Jᵀ) with J = [−n, −r_a × n, n, r_b × n] and W the block-diagonal
 // inverse mass of both bodies (kg): the mass the contact "feels" along the unit normal n
 // (normalised here). J W Jᵀ = m_a⁻¹ + m_b⁻¹ + (r_a×n)·I_a⁻¹(r_a×n) + (r_b×n)·I_b⁻¹(r_b×n).
-// Throws std::invalid_argument when both bodies are immovable (J W Jᵀ = 0).
+// Throws std::invalid_argument when both bodies are immovable (J W Jᵀ = 0), for a zero or
+// non-finite normal ("normal ...") and when J W Jᵀ overflows ("point ... too far").
 double effective_mass(const Body& a, const Body& b, const Vec3& point, const Vec3& normal);
 
 struct Contact {
@@ -76,17 +77,32 @@ struct ContactImpulse {
 // immovable").
 std::string contact_problem(const Body& a, const Body& b, const Contact& contact);
 
-// Resolves one contact (001_* Appendix C and "Collisions"):
-//  1. v_rel = v_b(p) − v_a(p); if v_rel·n ≥ 0 the bodies are separating or resting: nothing
-//     happens and the result is zero.
-//  2. Normal impulse J = −(1 + e) v_rel·n / (n·K n) (= the API's formula with the inverse
-//     world inertias), applied as +J n to b and −J n to a at p.
-//  3. Coulomb friction on the tangential relative velocity left after step 2, v_t: along
-//     t = v_t/|v_t| the impulse that stops the sliding is |v_t|/(t·K t); the friction impulse
-//     is −min(μ J, that) t on b (opposite on a): sliding at the Coulomb limit μ J, or sticking.
-// Linear and angular momentum about any point are conserved (equal and opposite impulses at
-// one point); kinetic energy is kept for e = 1 and μ = 0 and never increases.
-// Throws std::invalid_argument with contact_problem's message for a bad contact.
+// Resolves one contact (001_* Appendix C and "Collisions"; friction as an impulse with a
+// sticking and a sliding case, R. M. Brach, "Rigid Body Collisions", J. Appl. Mech. 56, 1989;
+// B. Mirtich, "Impulse-based Dynamic Simulation of Rigid Body Systems", PhD thesis, 1996).
+// With v = v_b(p) − v_a(p), v_n = v·n and K = contact_inverse_mass (v' = v + K P for an
+// impulse P on b, −P on a):
+//  1. v_n ≥ 0: the bodies are separating or resting; nothing happens, the result is zero.
+//  2. Compression (e = 0): the impulse that stops the contact point, P_s = −K⁻¹v (sticking),
+//     if it lies in Coulomb's cone |P_t| ≤ μ P_n; otherwise the point where the segment from
+//     the frictionless impulse P_f = −v_n/(n·K n) n to P_s leaves the cone (sliding at the
+//     Coulomb limit |P_t| = μ P_n). Every point of that segment gives v_n' = 0, and the
+//     energy, a convex function on it, is highest at P_f: the contact loses at least the
+//     frictionless ½ v_n²/(n·K n).
+//  3. Restitution: the further normal impulse that makes v_n' = −e v_n exactly (Newton's law,
+//     003_* "Collision Response"), again moved from the frictionless one toward the impulse
+//     that leaves the point sticking (v' = −e v_n n), as far as the cone allows and as long
+//     as the kinetic energy does not increase: with e > 0 and a point whose normal and
+//     tangential motions are coupled (n·K t ≠ 0), sticking after the rebound can need more
+//     energy than the impact had (Kane's paradox, W. J. Stronge, Proc. R. Soc. A 431, 1990),
+//     and then the contact leaves slipping.
+// So v_n' = −e v_n, |friction| ≤ μ·(normal impulse), linear and angular momentum about any
+// point are conserved (equal and opposite impulses at one point), the kinetic energy never
+// increases (kept for e = 1, μ = 0), and a point that friction can stop (μ large) ends
+// sticking when e = 0 or when n·K t = 0 (a sphere).
+// Throws std::invalid_argument with contact_problem's message for a bad contact, and when the
+// point is so far from the centres of mass that the impulse or the velocities overflow; the
+// bodies are then unchanged.
 ContactImpulse resolve_contact(Body& a, Body& b, const Contact& contact);
 
 }  // namespace rigidlab

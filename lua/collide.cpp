@@ -4,6 +4,7 @@
 // Sources: 001_* "System Of Particles", "Collisions", Appendices C and D; 002_* "Inverse Mass
 // Matrix"; 003_* "Collision Response".
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +23,28 @@ double check_inverse_mass(lua_State* L, int arg) {
   if (!(mass > 0.0))
     arg_error(L, arg, "mass must be > 0 (math.huge for immovable), got %s",
               format_number(mass).c_str());
-  return std::isinf(mass) ? 0.0 : 1.0 / mass;
+  const double inverse = std::isinf(mass) ? 0.0 : 1.0 / mass;
+  if (std::isinf(inverse))
+    arg_error(L, arg, "mass must be at least %s (1/mass overflows), got %s",
+              format_number(1.0 / std::numeric_limits<double>::max()).c_str(),
+              format_number(mass).c_str());
+  return inverse;
+}
+
+// Runs an engine call and returns the message of the std::invalid_argument it threw, or "";
+// the caller raises the Lua error after the catch (exceptions never cross Lua, STYLE.md 4).
+template <class F>
+std::string engine_error(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool starts_with(const std::string& text, const char* prefix) {
+  return text.rfind(prefix, 0) == 0;
 }
 
 double check_restitution(lua_State* L, int arg) {
@@ -41,8 +63,12 @@ int collide_impulse_1d(lua_State* L) {
   const double restitution = check_restitution(L, 5);
   if (inverse_mass_a == 0.0 && inverse_mass_b == 0.0)
     arg_error(L, 3, "both masses are math.huge: two immovable bodies cannot collide");
-  const Impulse1D r =
-      impulse_1d(inverse_mass_a, velocity_a, inverse_mass_b, velocity_b, restitution);
+  Impulse1D r;
+  // Overflow of J or a velocity: blame the larger of the two speeds.
+  const int fast = std::abs(velocity_a) >= std::abs(velocity_b) ? 2 : 4;
+  const std::string error = engine_error(
+      [&] { r = impulse_1d(inverse_mass_a, velocity_a, inverse_mass_b, velocity_b, restitution); });
+  if (!error.empty()) arg_error(L, fast, "%s", error.c_str());
   lua_pushnumber(L, r.impulse);
   lua_pushnumber(L, r.velocity_a);
   lua_pushnumber(L, r.velocity_b);
@@ -59,8 +85,14 @@ void check_body_pair(lua_State* L, Body*& a, Body*& b) {
 }
 
 Vec3 check_normal(lua_State* L, int arg, const Vec3& normal, const char* what) {
-  if (!(normal.norm() > 0.0)) arg_error(L, arg, "%s must not be zero", what);
+  if (!is_finite(normal)) arg_error(L, arg, "%s must be finite", what);
+  if (!(normal.cwiseAbs().maxCoeff() > 0.0)) arg_error(L, arg, "%s must not be zero", what);
   return normal;
+}
+
+Vec3 check_point(lua_State* L, int arg, const Vec3& point, const char* what) {
+  if (!is_finite(point)) arg_error(L, arg, "%s must be finite", what);
+  return point;
 }
 
 int collide_resolve(lua_State* L) {
@@ -74,7 +106,7 @@ int collide_resolve(lua_State* L) {
   static const char* const fields[] = {"point", "normal", "restitution", "friction", nullptr};
   check_fields(L, 3, fields);
   Contact contact;
-  contact.point = field_vec3(L, 3, "point", Vec3::Zero(), true);
+  contact.point = check_point(L, 3, field_vec3(L, 3, "point", Vec3::Zero(), true), "field 'point'");
   contact.normal = check_normal(L, 3, field_vec3(L, 3, "normal", Vec3::Zero(), true),
                                 "field 'normal'");
   contact.restitution = field_finite(L, 3, "restitution", 0.0, false);
@@ -85,7 +117,10 @@ int collide_resolve(lua_State* L) {
   if (!(contact.friction >= 0.0))
     arg_error(L, 3, "field 'friction' must be >= 0, got %s",
               format_number(contact.friction).c_str());
-  const ContactImpulse r = resolve_contact(*a, *b, contact);  // inputs checked: cannot throw
+  ContactImpulse r;
+  // Left to the engine: a point so far away that the impulse overflows (bodies unchanged).
+  const std::string error = engine_error([&] { r = resolve_contact(*a, *b, contact); });
+  if (!error.empty()) arg_error(L, 3, "%s", error.c_str());
   lua_pushnumber(L, r.normal_impulse);
   push_vec3(L, r.friction_impulse);
   return 2;
@@ -96,7 +131,15 @@ int collide_inverse_mass_matrix(lua_State* L) {
   const Body& b = check_body(L, 1);
   const Vec3 r1 = check_vec3(L, 2);
   const Vec3 r2 = check_vec3(L, 3);
-  push_mat3(L, inverse_mass_matrix(b, r1, r2));
+  check_point(L, 2, r1, "r1");
+  check_point(L, 3, r2, "r2");
+  const Mat3 m = inverse_mass_matrix(b, r1, r2);
+  if (!is_finite(m))
+    arg_error(L, 3, "r1 and r2 are too long: r̂2 I⁻¹ r̂1 overflows, got r1 = (%s, %s, %s), "
+              "r2 = (%s, %s, %s)", format_number(r1.x()).c_str(), format_number(r1.y()).c_str(),
+              format_number(r1.z()).c_str(), format_number(r2.x()).c_str(),
+              format_number(r2.y()).c_str(), format_number(r2.z()).c_str());
+  push_mat3(L, m);
   return 1;
 }
 
@@ -104,9 +147,14 @@ int collide_effective_mass(lua_State* L) {
   check_no_extra_args(L, 4);
   Body *a, *b;
   check_body_pair(L, a, b);
-  const Vec3 point = check_vec3(L, 3);
+  const Vec3 point = check_point(L, 3, check_vec3(L, 3), "point");
   const Vec3 normal = check_normal(L, 4, check_vec3(L, 4), "normal");
-  lua_pushnumber(L, effective_mass(*a, *b, point, normal));
+  double m = 0.0;
+  const std::string error = engine_error([&] { m = effective_mass(*a, *b, point, normal); });
+  if (!error.empty())
+    arg_error(L, starts_with(error, "normal") ? 4 : starts_with(error, "point") ? 3 : 2, "%s",
+              error.c_str());
+  lua_pushnumber(L, m);
   return 1;
 }
 
@@ -129,10 +177,16 @@ const Entry functions[] = {
      "(default 0). With v_rel = b:point_velocity(p) - a:point_velocity(p):\n"
      "  if v_rel·n >= 0 they separate: nothing happens, J = 0;\n"
      "  J = −(1+e) v_rel·n / (1/ma + 1/mb + n·[(Ia⁻¹(ra×n))×ra + (Ib⁻¹(rb×n))×rb])\n"
-     "  (001 Appendix C, inverse world inertias), +J n on b and −J n on a at p; then Coulomb\n"
-     "  friction against the tangential relative velocity left, at most μ J and never more\n"
-     "  than stops the sliding (then the contact point sticks).\n"
-     "Momentum (linear and angular) is conserved; energy is kept for e = 1 without friction."},
+     "  (001 Appendix C, inverse world inertias), +J n on b and −J n on a at p, when there is\n"
+     "  no friction. With friction μ the impulse P (on b; a gets −P) is found with the contact's\n"
+     "  inverse mass matrix K (v_rel' = v_rel + K P, sums of collide.inverse_mass_matrix):\n"
+     "  first the impulse that stops the point, −K⁻¹ v_rel, if Coulomb's cone |P_t| <= μ P_n\n"
+     "  allows it (sticking), else the point where the way there from the frictionless impulse\n"
+     "  leaves the cone (sliding at μ·J; Brach 1989, Mirtich 1996); then the rebound to\n"
+     "  v_n' = −e v_n, keeping the point stuck if the cone allows and no energy is created.\n"
+     "  Always v_n' = −e v_n, |friction| <= μ J and the kinetic energy never grows; for a\n"
+     "  body whose contact couples normal and sliding motion (a turned box) a rebound with\n"
+     "  e > 0 can leave the point slipping even for large μ (Kane's paradox, Stronge 1990).\n"     "Momentum (linear and angular) is conserved; energy is kept for e = 1 without friction."},
     {"inverse_mass_matrix", collide_inverse_mass_matrix, "collide.inverse_mass_matrix",
      "collide.inverse_mass_matrix(b, r1, r2) -> mat3",
      "002 \"Inverse Mass Matrix\": M⁻¹ = (1/m)E − r̂2 I⁻¹ r̂1 (world axes, world inverse\n"

@@ -326,7 +326,9 @@ int world_add_plane(lua_State* L) {
     lua_newtable(L);
   }
   if (!lua_istable(L, 2)) type_error(L, 2, "table");
-  check_no_extra_args(L, 2);
+  // Counted as the other errors of this method count: the table is argument #1.
+  if (lua_gettop(L) > 2)
+    arg_error(L, 3, "no more than 1 argument (the table) expected, got %d", lua_gettop(L) - 1);
   static const char* const fields[] = {"normal", "offset", "restitution", "friction", nullptr};
   check_fields(L, 2, fields);
   const Vec3 normal = field_vec3(L, 2, "normal", Vec3::UnitY(), false);

@@ -200,6 +200,68 @@ TEST(ResolveContact, FrictionNeverAddsEnergy) {
   }
 }
 
+// The contact's inverse mass matrix measured, not computed by the code under test: column k is
+// the change of v_b(p) − v_a(p) when b gets the unit impulse e_k at p and a gets −e_k
+// (Body's own apply_impulse and point_velocity, 002_* "Inverse Mass Matrix").
+Mat3 measured_inverse_mass(const Body& a, const Body& b, const Vec3& p) {
+  Mat3 k;
+  const Vec3 v0 = point_velocity(b, p) - point_velocity(a, p);
+  for (int i = 0; i < 3; ++i) {
+    Body a1 = a, b1 = b;
+    apply_impulse(a1, -Vec3::Unit(i), p);
+    apply_impulse(b1, Vec3::Unit(i), p);
+    k.col(i) = point_velocity(b1, p) - point_velocity(a1, p) - v0;
+  }
+  return k;
+}
+
+TEST(ResolveContact, WithFrictionNewtonsLawCoulombsConeAndNoEnergyGain) {
+  // With friction the normal condition must still hold (v_n' = −e v_n, 003_* "Collision
+  // Response"), the friction impulse must stay in Coulomb's cone, and no energy may appear,
+  // for bodies whose normal and tangential motions are coupled (boxes turned at random).
+  Random random;
+  for (int i = 0; i < 400; ++i) {
+    const double e = i % 5 == 0 ? 1.0 : i % 5 == 1 ? 0.0 : random.uniform(0, 1);
+    const double mu = i % 3 == 0 ? 100.0 : random.uniform(0, 2);
+    Collision c = random_collision(random, e, mu);
+    const Vec3 p = c.contact.point, n = c.contact.normal;
+    const double vn = n.dot(point_velocity(c.b, p) - point_velocity(c.a, p));
+    const double t0 = kinetic_energy(c.a) + kinetic_energy(c.b);
+    const ContactImpulse r = resolve_contact(c.a, c.b, c.contact);
+    const double vn_after = n.dot(point_velocity(c.b, p) - point_velocity(c.a, p));
+    EXPECT_NEAR(vn_after, -e * vn, 1e-12 * (1 + std::abs(vn))) << i;
+    EXPECT_GT(r.normal_impulse, 0.0);
+    EXPECT_LE(r.friction_impulse.norm(), mu * r.normal_impulse * (1 + 1e-12)) << i;
+    EXPECT_NEAR(r.friction_impulse.dot(n), 0.0, 1e-12 * r.normal_impulse);
+    EXPECT_LE(kinetic_energy(c.a) + kinetic_energy(c.b), t0 * (1 + 1e-13)) << i;
+  }
+}
+
+TEST(ResolveContact, EndsStickingWhenTheConeHoldsTheStoppingImpulse) {
+  // The impulse that leaves the contact point with v' = −e v_n n (no slip) is P = K⁻¹(v' − v),
+  // K measured above. When P lies in the cone (P_n > 0, |P_t| ≤ μ P_n) and costs no energy
+  // (P·v + ½ P·K P ≤ 0), the contact must end sticking; with e = 0 it never costs energy.
+  Random random;
+  int sticking = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double e = i % 2 == 0 ? 0.0 : random.uniform(0, 1);
+    Collision c = random_collision(random, e, 100.0);
+    const Vec3 p = c.contact.point, n = c.contact.normal;
+    const Vec3 v = point_velocity(c.b, p) - point_velocity(c.a, p);
+    const Mat3 k = measured_inverse_mass(c.a, c.b, p);
+    const Vec3 stop = k.inverse() * (-e * n.dot(v) * n - v);
+    const double stop_n = stop.dot(n);
+    const bool in_cone = stop_n > 0 && (stop - stop_n * n).norm() <= 100.0 * stop_n;
+    const bool free_of_charge = stop.dot(v) + 0.5 * stop.dot(k * stop) <= -1e-9;
+    if (!in_cone || !free_of_charge) continue;
+    ++sticking;
+    resolve_contact(c.a, c.b, c.contact);
+    const Vec3 after = point_velocity(c.b, p) - point_velocity(c.a, p);
+    EXPECT_LT((after - after.dot(n) * n).norm(), 1e-10 * (1 + v.norm())) << i;
+  }
+  EXPECT_GT(sticking, 150);  // the case is common, not vacuous
+}
+
 // A solid sphere (m = 2 kg, R = 0.5 m) hits an immovable floor at y = 0 with velocity
 // (3, −4, 0) m/s, no spin; the contact is its lowest point.
 struct SphereOnFloor {
@@ -283,6 +345,29 @@ TEST(ResolveContact, ProblemsAreNamed) {
   c.restitution = -0.5;
   EXPECT_THROW(resolve_contact(s.floor, s.sphere, c), std::invalid_argument);
   EXPECT_EQ(s.sphere.velocity, before.velocity);  // unchanged after a refused call
+}
+
+TEST(ResolveContact, HugeNormalsAndFarPointsAreHandledOrRefused) {
+  // A long normal is a direction like any other: (1e300, 1e300, 0) acts as (1, 1, 0).
+  SphereOnFloor unit(0.3), huge(0.3);
+  unit.contact.normal = Vec3(0, 1, 0);
+  huge.contact.normal = Vec3(0, 1e300, 0);
+  const double j1 = resolve_contact(unit.floor, unit.sphere, unit.contact).normal_impulse;
+  const double j2 = resolve_contact(huge.floor, huge.sphere, huge.contact).normal_impulse;
+  EXPECT_GT(j1, 0.0);
+  EXPECT_EQ(j1, j2);
+  EXPECT_NEAR(effective_mass(unit.floor, unit.sphere, Vec3::Zero(), Vec3(1e300, 1e300, 0)),
+              effective_mass(unit.floor, unit.sphere, Vec3::Zero(), Vec3(1, 1, 0)), 1e-15);
+  // A point 1e160 m away overflows K: refused, and the bodies keep their velocities.
+  SphereOnFloor far(0.3);
+  far.contact.point = Vec3(1, 1e160, 0);
+  const Body before = far.sphere;
+  EXPECT_THROW(resolve_contact(far.floor, far.sphere, far.contact), std::invalid_argument);
+  EXPECT_EQ(far.sphere.velocity, before.velocity);
+  EXPECT_EQ(far.sphere.angular_velocity, before.angular_velocity);
+  EXPECT_THROW(effective_mass(far.floor, far.sphere, Vec3(1e300, 0, 0), Vec3::UnitY()),
+               std::invalid_argument);
+  EXPECT_THROW(impulse_1d(1.0, 1e308, 1.0, -1e308, 1.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -106,6 +106,46 @@ T.case("resolve: energy and Newton's restitution law without friction", function
   end
 end)
 
+-- The contact's inverse mass matrix K = M_a⁻¹ + M_b⁻¹ at p from collide.inverse_mass_matrix
+-- (checked above against b:apply_impulse): v_rel' = v_rel + K P for P on b and −P on a.
+local function contact_matrix(a, b, p)
+  local ra, rb = p - a.position, p - b.position
+  return collide.inverse_mass_matrix(a, ra, ra) + collide.inverse_mass_matrix(b, rb, rb)
+end
+
+T.case("resolve with friction: Newton's law, Coulomb's cone, no energy gain, sticking", function()
+  -- Turned boxes couple normal and tangential motion (n·K t ≠ 0): the normal condition must
+  -- hold after friction acts, and a contact that the cone allows to stop must stop.
+  local rnd = T.random(21)
+  local stuck = 0
+  for i = 1, 300 do
+    local a, b, p, n = random_contact(rnd)
+    local e = i % 2 == 0 and 0 or rnd(0, 1)
+    local mu = i % 3 == 0 and 100 or rnd(0, 2)
+    local v = b:point_velocity(p) - a:point_velocity(p)
+    local vn = v:dot(n)
+    local t0 = a:kinetic_energy() + b:kinetic_energy()
+    local p0 = a:linear_momentum() + b:linear_momentum()
+    -- The impulse that would leave the point at −e v_n n, with no slip: P = K⁻¹(v' − v).
+    local k = contact_matrix(a, b, p)
+    local stop = k:inverse() * (n * (-e * vn) - v)
+    local stop_n = stop:dot(n)
+    local can_stick = stop_n > 0 and (stop - n * stop_n):norm() <= mu * stop_n and
+      stop:dot(v) + 0.5 * stop:dot(k * stop) <= -1e-9
+    local j, jt = collide.resolve(a, b, {point = p, normal = n, restitution = e, friction = mu})
+    local after = b:point_velocity(p) - a:point_velocity(p)
+    T.near(after:dot(n), -e * vn, 1e-11 * (1 + math.abs(vn)), "v_n' = −e v_n")
+    assert(jt:norm() <= mu * j * (1 + 1e-12), "inside Coulomb's cone")
+    T.near(a:linear_momentum() + b:linear_momentum(), p0, 1e-11, "momentum")
+    assert(a:kinetic_energy() + b:kinetic_energy() <= t0 * (1 + 1e-13), "no energy gained")
+    if can_stick then
+      stuck = stuck + 1
+      T.near((after - n * after:dot(n)):norm(), 0, 1e-10 * (1 + v:norm()), "ends sticking")
+    end
+  end
+  assert(stuck > 50, "sticking cases were tested: " .. stuck)
+end)
+
 T.case("resolve: effective_mass against the direct formula, and the energy it predicts", function()
   local rnd = T.random(13)
   for _ = 1, 50 do
@@ -225,7 +265,33 @@ T.case("errors name the argument and the rule", function()
     function() collide.effective_mass(wall, wall2, vec3(), vec3(1, 0, 0)) end)
   fails("bad argument #3 to 'collide.inverse_mass_matrix' (vec3 expected, got no value)",
     function() collide.inverse_mass_matrix(a, vec3()) end)
+  -- Values the engine cannot use: refused with the argument named, never a stray message.
+  fails("bad argument #1 to 'collide.impulse_1d' (mass must be at least 5.562684646268e-309 " ..
+    "(1/mass overflows), got 9.9998886718268e-321)",
+    function() collide.impulse_1d(1e-320, 1, 1, 0, 0.5) end)
+  fails("bad argument #2 to 'collide.impulse_1d' (the impulse overflows",
+    function() collide.impulse_1d(1, 1e308, 1, -1e308, 1) end)
+  fails("bad argument #3 to 'collide.effective_mass' (point (1e+300, 0, 0) is too far from " ..
+    "the centres of mass: J W Jᵀ overflows)",
+    function() collide.effective_mass(a, b, vec3(1e300, 0, 0), vec3(0, 1, 0)) end)
+  fails("bad argument #3 to 'collide.resolve' (point (1, 1e+160, 0) is too far from the " ..
+    "centres of mass: the impulse overflows)",
+    function() collide.resolve(a, b, contact{point = vec3(1, 1e160, 0)}) end)
+  fails("bad argument #3 to 'collide.inverse_mass_matrix' (r1 and r2 are too long: " ..
+    "r̂2 I⁻¹ r̂1 overflows, got r1 = (1e+200, 0, 0), r2 = (0, 1e+200, 0))",
+    function() collide.inverse_mass_matrix(b, vec3(1e200, 0, 0), vec3(0, 1e200, 0)) end)
   T.equal(b.velocity, vec3(-1, 0, 0), "refused calls change nothing")
+  T.equal(a.velocity, vec3(), "refused calls change nothing (a)")
+  T.equal(b.angular_velocity, vec3(), "nor the spin")
+  -- A long normal is still a direction: (1e300, 1e300, 0) acts as (1, 1, 0).
+  local a2, b2 = body.sphere{mass = 1, radius = 1}, body.sphere{mass = 1, radius = 1,
+    position = vec3(2, 0, 0), velocity = vec3(-1, 0, 0)}
+  local j_long = collide.resolve(a, b, contact{normal = vec3(1e300, 1e300, 0)})
+  local j_unit = collide.resolve(a2, b2, contact{normal = vec3(1, 1, 0)})
+  T.near(j_long, j_unit, 1e-15, "J along a long normal")
+  assert(j_unit > 0, "and it is an impact")
+  T.near(collide.effective_mass(a, b, vec3(1, 0, 0), vec3(1e300, 1e300, 0)),
+    collide.effective_mass(a, b, vec3(1, 0, 0), vec3(1, 1, 0)), 1e-15, "m_eff along a long normal")
 end)
 
 T.case("no impulses in the middle of a world step", function()

@@ -45,6 +45,9 @@ T.case("add_plane: errors", function()
     "restitution, friction))")
   T.fails(function() w:add_plane(3) end,
     "bad argument #1 to 'world:add_plane' (table expected, got number)")
+  -- Counted like the errors above: the table is #1, so an extra argument is #2 of 1.
+  T.fails(function() w:add_plane({}, 3) end,
+    "bad argument #2 to 'world:add_plane' (no more than 1 argument (the table) expected, got 2)")
   T.equal(#w:planes(), 0, "nothing was added")
 end)
 
