@@ -96,21 +96,24 @@ with the body, it tumbles.]],
       run = function(ctx)
         local inverse = I:inverse()
         local cases = {
-          {"along the long edge (λ = 2.5)", 4 * A:col(3), 2.5},
-          {"along the short edge (λ = 6.5)", 4 * A:col(1), 6.5},
-          {"L = (1, 1, 1)", vec3(1, 1, 1), nil},
+                    {"long edge (λ = 2.5)", 4 * A:col(3), 2.5},
+          {"short edge (λ = 6.5)", 4 * A:col(1), 6.5},
+                    {"(1, 1, 1)", vec3(1, 1, 1), nil},
         }
         local rows = {}
         for i, case in ipairs(cases) do
           local L = case[2]
           local omega = inverse * L
-          rows[i] = {case[1], short(omega), omega:cross(L):norm(), angle_between(omega, L)}
+                    rows[i] = {case[1], short(omega), string.format("%.1e", omega:cross(L):norm()),
+                     string.format("%.2f", angle_between(omega, L))}
           if case[3] then
-            ctx:expect("ω = L/λ " .. case[1], omega, L * (1 / case[3]), {abs = 1e-12})
-            ctx:expect("|ω × L| = 0 " .. case[1], omega:cross(L):norm(), 0, {abs = 1e-12})
+                        ctx:expect("L along the " .. case[1] .. ": ω = L/λ", omega, L * (1 / case[3]),
+                       {abs = 1e-12})
+            ctx:expect("L along the " .. case[1] .. ": |ω × L| = 0", omega:cross(L):norm(), 0,
+                       {abs = 1e-12})
           end
         end
-        ctx:table({"L", "ω = I⁻¹L (rad/s)", "|ω × L|", "angle (°)"}, rows)
+        ctx:table({"L along", "ω = I⁻¹L (rad/s)", "|ω × L|", "angle (°)"}, rows)
         local generic = inverse * vec3(1, 1, 1)
         -- Independent of the inverse: in the box's axes ω is L's components divided by the moments.
         local in_box_axes = A:transpose() * vec3(1, 1, 1)
