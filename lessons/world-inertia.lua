@@ -52,7 +52,8 @@ orientation matrix R: I_world = R·I_body·Rᵀ.
 into the particle formula, the R's factor out on both sides. We check exactly that: a body
 of six particles with I_body = diag(0.09, 0.37, 0.44) kg·m², turned 60° about (1, 1, 0).
 Rebuilding the tensor from the turned particles must match the body's world_inertia().]],
-      formula = "I_world = R·I_body·Rᵀ      (from r' = R·r:  (r'·r')E − r'⊗r' = R((r·r)E − r⊗r)Rᵀ)",
+            formula = "I_world = R·I_body·Rᵀ\n" ..
+                "(from r' = R·r:  (r'·r')E − r'⊗r' = R((r·r)E − r⊗r)Rᵀ)",
       run = function(ctx)
         local _, _, from_particles = inertia.points(particles)
         ctx:expect("the particles' body tensor = diag(0.09, 0.37, 0.44)", from_particles, I_body)
