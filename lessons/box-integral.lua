@@ -81,7 +81,8 @@ what remains agrees with M(h² + d²)/12 to rounding (checked to 1e-12 kg·m²).
 The products of inertia come out as zero. The cells pair up mirror-image: for every cell at
 (x, y, z) there is one at (−x, y, z) whose −x·y cancels it. That is the article's argument
 for I₁₂ = 0: the inner integral of −x·y over a range symmetric about zero vanishes.]],
-      formula = "I ≈ Σ_cells ρ·ΔV·((r·r)E − r⊗r),   S(n) = I_exact·(1 − 1/n²) on the diagonal\n" ..
+      formula = "I ≈ Σ_cells ρ·ΔV·((r·r)E − r⊗r)\n" ..
+                "S(n) = I_exact·(1 − 1/n²) on the diagonal\n" ..
                 "Richardson: (4·S(2n) − S(n))/3 = I_exact",
       run = function(ctx)
         local rows, coarse, fine = {}, nil, nil

@@ -81,7 +81,8 @@ Notice in the table how the shifts dwarf the parts' own moments about x: the bal
 but they sit far from the middle. That is why a dumbbell is so hard to swing end over end
 compared with twirling it about its own bar (about z the shift adds nothing, all the offsets
 being along z).]],
-      formula = "x_com = Σ mᵢ·cᵢ / Σ mᵢ,   Iᵢ' = Iᵢ + mᵢ((dᵢ·dᵢ)E − dᵢ⊗dᵢ),  dᵢ = cᵢ − x_com",
+      formula = "x_com = Σ mᵢ·cᵢ / Σ mᵢ\n" ..
+                "Iᵢ' = Iᵢ + mᵢ((dᵢ·dᵢ)E − dᵢ⊗dᵢ),  dᵢ = cᵢ − x_com",
       run = function(ctx)
         local com = vec3(0, 0, com_z)
         ctx:show("centre of mass by hand (m)", com)

@@ -107,7 +107,7 @@ of 0.208. (Its products, I_xy = ∫xy dm + m·dₓd_y, are right in its own conv
 the tensor holds −I_xy.)]],
       formula = "I_P = I_com + m((d·d)E − d⊗d):\n" ..
                 "  I_xx += m(d_y² + d_z²),  I_yy += m(dₓ² + d_z²),  I_zz += m(dₓ² + d_y²)\n" ..
-                "  tensor xy entry −= m·dₓ·d_y,  xz entry −= m·dₓ·d_z,  yz entry −= m·d_y·d_z",
+                "  entries xy −= m·dₓ·d_y,  xz −= m·dₓ·d_z,  yz −= m·d_y·d_z",
       run = function(ctx)
         local m, w, h, depth = 2, 1, 0.5, 0.25
         local I_com = inertia.solid_box(m, w, h, depth)

@@ -100,7 +100,8 @@ collide.resolve is given the contact point between them; its impulse must equal 
 formula with the normal components only, and the energy lost must be ½μ(1 − e²)(v_rel·N)².
 The contact point lies on the line of centres, so the impulse passes through both centres
 of mass and neither ball starts to spin.]],
-      formula = "p̂ = (e+1)(v2·n − v1·n)/(1/m1 + 1/m2)·n,   v1' = v1 + p̂/m1,   v2' = v2 − p̂/m2",
+      formula = "p̂ = (e+1)(v2·n − v1·n)/(1/m1 + 1/m2)·n,\n" ..
+                "v1' = v1 + p̂/m1,   v2' = v2 − p̂/m2",
       run = function(ctx)
         local e = 0.5
         local normal = vec3(3, 4, 0):normalized()
