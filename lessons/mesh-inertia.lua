@@ -42,7 +42,8 @@ so the algorithm knows which side is solid. First a test where we know the answe
 2 × 1 × 0.5 m of density 800 kg/m³, with one corner at (1, −2, 0.5), made of 12 triangles.
 It must give the mass ρ·V = 800 kg, the centre at corner + half the size, (2, −1.5, 0.75),
 and about that centre the box formula m/12·(h² + d², w² + d², w² + h²).]],
-      formula = "m = ρ∫dV,   c = (1/V)∫r dV,   I = ρ∫((r − c)·(r − c)E − (r − c)⊗(r − c)) dV",
+      formula = "m = ρ∫dV,   c = (1/V)∫r dV,\n" ..
+                "I = ρ∫((r − c)·(r − c)E − (r − c)⊗(r − c)) dV",
       run = function(ctx)
         local vertices, triangles = box_mesh(vec3(1, -2, 0.5), vec3(2, 1, 0.5))
         ctx:show("triangles", #triangles)
@@ -77,7 +78,8 @@ to 1/30 − 1/48 = 1/80, and each product entry rises by (1/6)(1/16) = 1/96, to
 points far out along x tend to lie low in y (the slanted face x + y + z = 1 cuts them off), so
 the x and y offsets mostly have opposite signs and −∫xy dm comes out positive.]],
       formula = "V = 1/6,  c = (1/4, 1/4, 1/4),  ∫x² dV = 1/60,  ∫xy dV = 1/120\n" ..
-                "I_origin = [1/30, −1/120, −1/120; ...],   I_com = I_origin − m((c·c)E − c⊗c)\n" ..
+                "I_origin = [1/30, −1/120, −1/120; ...]\n" ..
+                "I_com = I_origin − m((c·c)E − c⊗c)\n" ..
                 "         = [1/80, 1/480, 1/480; 1/480, 1/80, 1/480; 1/480, 1/480, 1/80]",
       run = function(ctx)
         local mass, com, I, volume = inertia.mesh(tetra_vertices, tetra_triangles)
