@@ -80,7 +80,7 @@ the x and y offsets mostly have opposite signs and −∫xy dm comes out positiv
       formula = "V = 1/6,  c = (1/4, 1/4, 1/4),  ∫x² dV = 1/60,  ∫xy dV = 1/120\n" ..
                 "I_origin = [1/30, −1/120, −1/120; ...]\n" ..
                 "I_com = I_origin − m((c·c)E − c⊗c)\n" ..
-                "         = [1/80, 1/480, 1/480; 1/480, 1/80, 1/480; 1/480, 1/480, 1/80]",
+                "      = [1/80, 1/480, 1/480; 1/480, 1/80, 1/480; 1/480, 1/480, 1/80]",
       run = function(ctx)
         local mass, com, I, volume = inertia.mesh(tetra_vertices, tetra_triangles)
         ctx:show("volume (m³)", volume)
