@@ -85,8 +85,8 @@ finishing at 450 m, 50 m short. The two Euler variants miss by the same amount i
 opposite directions: one uses the velocity at the end of each step, the other the velocity
 at its start, while the truth is the velocity in the middle. Each column also matches the
 closed form of its own update, which you get by summing an arithmetic series.]],
-      formula = "explicit:       rₙ = rₙ₋₁ + vₙ₋₁·Δt, vₙ = vₙ₋₁ + a·Δt ⇒ rₙ = a·Δt²·n(n−1)/2\n" ..
-                "semi-implicit:  vₙ = vₙ₋₁ + a·Δt, rₙ = rₙ₋₁ + vₙ·Δt   ⇒ rₙ = a·Δt²·n(n+1)/2",
+      formula = "explicit:      rₙ = rₙ₋₁ + vₙ₋₁·Δt, vₙ = vₙ₋₁ + a·Δt ⇒ rₙ = aΔt²·n(n−1)/2\n" ..
+                "semi-implicit: vₙ = vₙ₋₁ + a·Δt, rₙ = rₙ₋₁ + vₙ·Δt   ⇒ rₙ = aΔt²·n(n+1)/2",
       run = function(ctx)
         local explicit = car("euler", slides_dt)
         local semi = car("semi_implicit", slides_dt)
