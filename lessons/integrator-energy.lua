@@ -147,8 +147,8 @@ as long as you care to run. This is why games prefer it, and halving Δt halves 
         ctx:show("highest E reached (J)", high)
         ctx:expect("E never leaves the band (distance outside it)",
                    math.max(0, high - upper, lower - low), 0, {abs = 1e-12})
-        ctx:say("The energy is only sampled once per step (a swing takes about 63 steps), so the")
-        ctx:say("extremes reached come close to the edges but not exactly; hence rel 1e-4 here:")
+        ctx:say("E is only sampled once per step (a swing takes about 63 steps), so the")
+        ctx:say("extremes come close to the edges but not exactly; hence rel 1e-4 here:")
         ctx:expect("highest E ≈ upper edge", high, upper, 1e-4)
         ctx:expect("lowest E ≈ lower edge", low, lower, 1e-4)
       end,
