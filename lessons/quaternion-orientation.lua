@@ -119,7 +119,8 @@ drops by four, the global error O(Δt²) of a method whose local error is O(Δt�
           previous = lag
         end
         ctx:table({"Δt (s)", "lag after 1 s (rad)", "closed form (rad)", "ratio", "|q|"}, rows)
-        ctx:say("The lag's axis is checked to 1e-6: for tiny turns axis_angle divides by sin(lag/2).")
+        ctx:say("The lag's axis is checked to 1e-6: for tiny turns axis_angle divides by")
+        ctx:say("sin(lag/2), which magnifies rounding.")
       end,
     },
     {
