@@ -43,7 +43,8 @@ end
 return lesson{
   id = "momentum-primary",
   title = "Angular momentum as the primary quantity",
-  source = "002_5497adede943f513.txt, \"Rigid Body Dynamics\"; 003_636de12a6b81385f.txt; " ..
+  source = "002_5497adede943f513.txt, \"Rigid Body Dynamics\"; 003_636de12a6b81385f.txt, " ..
+           "\"Angular Momentum\", \"Solving Angular Equations in 3D\"; " ..
            "004_8f5d2bfd6f0c2787.txt, \"Rigid Body Update Code\"",
   steps = {
     {
@@ -153,7 +154,8 @@ by much more than a rounding error. A ball spinning about the world z axis at 1 
 turn about the body's own z axis, a different axis in the world. (003 has a similar
 inconsistency: its summary says to integrate the orientation with the new ω computed from
 the new L, while its formula uses ω(t₁), the old one.)]],
-      formula = "right: A' = Rotate(ωΔt)·A (ω in world axes);   002 prints A' = A·Rotate(ωΔt)",
+      formula = "right: A' = Rotate(ωΔt)·A   (ω in world axes)\n" ..
+                "002 prints A' = A·Rotate(ωΔt)",
       run = function(ctx)
         local omega, dt = vec3(0, 0, 1), 0.5
         local tilt = quat.axis_angle(vec3(1, 0, 0), math.pi / 2)
