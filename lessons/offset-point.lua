@@ -1,5 +1,5 @@
 -- Velocity and acceleration of a point fixed on a rotating body (004 "Example: Circular
--- Movement", "Rotation around Axis"; 002 "Kinematics of Offset Points").
+-- Movement", "Example: Rotation around Axis"; 002 "Kinematics of Offset Points").
 
 local z_axis = vec3(0, 0, 1)
 
@@ -33,8 +33,8 @@ end
 return lesson{
   id = "offset-point",
   title = "How a point on a spinning body moves",
-  source = "004_8f5d2bfd6f0c2787.txt, \"Example: Circular Movement\", \"Rotation around " ..
-           "Axis\"; 002_5497adede943f513.txt, \"Kinematics of Offset Points\"",
+  source = "004_8f5d2bfd6f0c2787.txt, \"Example: Circular Movement\", \"Example: Rotation " ..
+           "around Axis\"; 002_5497adede943f513.txt, \"Kinematics of Offset Points\"",
   steps = {
     {
       title = "Circular movement in components",
@@ -107,9 +107,8 @@ it. 002 adds the two motions. A point fixed on the body, at offset r from the ce
 mass (in world coordinates), is at x = x_cm + r; since r only turns, its velocity is
 v = v_cm + ω⃗ × r; and its acceleration is a = a_cm + α⃗ × r + ω⃗ × (ω⃗ × r).
 
-(002 typesets the middle term of the acceleration as ω with a bar over it crossed with r;
-the time derivative of ω, the angular acceleration α = ω̇, is what is meant: a dot, not a
-bar.)
+(002 writes the angular acceleration as ω with a bar over it, defined in its "Rigid Body
+Dynamics" slide as dω/dt; here it is α = ω̇, the same quantity.)
 
 A 3 kg box spins at 3 rad/s about its z axis while its centre drifts at 0.5 m/s; a
 constant 6 N force pushes it along z and a torque of 0.26 N·m spins it up at 2 rad/s².
@@ -117,7 +116,8 @@ rigidlab's b:point_velocity gives the velocity of its corner directly. For the
 acceleration we let a world move the box (RK4, two steps of h = 1e-4 s) and difference
 the corner's velocity, (v(t + h) − v(t − h))/2h; that estimate is good to about h² times
 the corner's fourth derivative (≈ 1e-7 m/s²), so we check it to 1e-5.]],
-      formula = "x = x_cm + r,   v = v_cm + ω⃗ × r,   a = a_cm + α⃗ × r + ω⃗ × (ω⃗ × r)",
+      formula = "x = x_cm + r,   v = v_cm + ω⃗ × r\n" ..
+                "a = a_cm + α⃗ × r + ω⃗ × (ω⃗ × r)",
       run = function(ctx)
         local b = spinning_box()
         local corner = b:to_world(point_local)
