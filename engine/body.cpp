@@ -1,20 +1,14 @@
 #include "engine/body.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
+#include "engine/format.hpp"
 #include "engine/inertia.hpp"
 
 namespace rigidlab {
 namespace {
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.14g", x);
-  return buffer;
-}
 
 // The tensor a static body reports: infinite about every axis, like its mass. Only the
 // diagonal is infinite, so the off-diagonal zeros stay exact.
@@ -25,8 +19,9 @@ Mat3 infinite_inertia() {
 }  // namespace
 
 Body make_body(double mass, const Mat3& inertia) {
-  if (!std::isfinite(mass)) throw std::invalid_argument("mass must be finite, got " + number(mass));
-  if (!(mass > 0.0)) throw std::invalid_argument("mass must be > 0, got " + number(mass));
+  if (!std::isfinite(mass))
+    throw std::invalid_argument("mass must be finite, got " + format_number(mass));
+  if (!(mass > 0.0)) throw std::invalid_argument("mass must be > 0, got " + format_number(mass));
   if (!is_finite(inertia)) throw std::invalid_argument("inertia must be finite");
   const std::string problem = inertia_tensor_problem(inertia);
   if (!problem.empty()) throw std::invalid_argument("inertia is not a valid tensor: " + problem);

@@ -1,20 +1,15 @@
 #include "engine/forces.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "engine/format.hpp"
 
 namespace rigidlab {
 namespace {
 
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.14g", x);
-  return buffer;
-}
-
 std::string nonnegative_problem(double x, const char* what) {
-  if (!std::isfinite(x)) return std::string(what) + " must be finite, got " + number(x);
-  if (!(x >= 0.0)) return std::string(what) + " must be >= 0, got " + number(x);
+  if (!std::isfinite(x)) return std::string(what) + " must be finite, got " + format_number(x);
+  if (!(x >= 0.0)) return std::string(what) + " must be >= 0, got " + format_number(x);
   return {};
 }
 
@@ -56,9 +51,9 @@ Vec3 spring_force(const std::vector<Body>& bodies, const Spring& s) {
   const Vec3 pa = spring_end_a(bodies, s);
   const Vec3 pb = spring_end_b(bodies, s);
   const Vec3 d = pb - pa;
-  const double length = d.norm();
-  if (!(length > 0.0)) return Vec3::Zero();
-  const Vec3 u = d / length;
+  if (is_zero(d)) return Vec3::Zero();
+  const double length = stable_norm(d);
+  const Vec3 u = unit(d);
   const Vec3 relative_velocity = end_velocity(bodies, s.b, pb) - end_velocity(bodies, s.a, pa);
   return (s.stiffness * (length - s.rest_length) + s.damping * relative_velocity.dot(u)) * u;
 }
@@ -70,7 +65,7 @@ void apply_spring(std::vector<Body>& bodies, const Spring& s) {
 }
 
 double spring_potential_energy(const std::vector<Body>& bodies, const Spring& s) {
-  const double stretch = (spring_end_b(bodies, s) - spring_end_a(bodies, s)).norm() - s.rest_length;
+  const double stretch = stable_norm(spring_end_b(bodies, s) - spring_end_a(bodies, s)) - s.rest_length;
   return 0.5 * s.stiffness * stretch * stretch;
 }
 

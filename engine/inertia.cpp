@@ -3,23 +3,21 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+
+#include "engine/format.hpp"
 
 namespace rigidlab {
 namespace {
+
+// Ten significant digits: these messages list several values.
+std::string number(double x, int digits = 10) { return format_number(x, digits); }
 
 // Relative tolerances of inertia_tensor_problem and rotation_problem (see inertia.hpp).
 constexpr double asymmetry_tolerance = 1e-9;
 constexpr double triangle_tolerance = 1e-9;
 constexpr double zero_moment_tolerance = 1e-12;
 constexpr double rotation_tolerance = 1e-9;
-
-std::string number(double x, int digits = 10) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
 
 // Throws "<what> must be finite, got nan" or "<what> must be > 0, got -1" (">= 0" when zero
 // is allowed).
@@ -158,17 +156,15 @@ Mat3 rotate_inertia(const Mat3& inertia, const Mat3& rotation) {
 }
 
 Mat3 rotate_inertia(const Mat3& inertia, const Quat& rotation) {
-  const double length = rotation.norm();
-  if (!is_finite(rotation) || !(length > 0.0))
+  if (!is_finite(rotation) || is_zero(rotation))
     throw std::invalid_argument("rotation quaternion must be finite and non-zero");
-  return rotate_inertia(inertia, Mat3(rotation.normalized().toRotationMatrix()));
+  return rotate_inertia(inertia, Mat3(unit(rotation).toRotationMatrix()));
 }
 
 double about_axis(const Mat3& inertia, const Vec3& axis) {
-  const double length = axis.norm();
-  if (!is_finite(axis) || !(length > 0.0))
+  if (!is_finite(axis) || is_zero(axis))
     throw std::invalid_argument("axis must be a finite non-zero vector");
-  const Vec3 n = axis / length;
+  const Vec3 n = unit(axis);
   return n.dot(inertia * n);
 }
 

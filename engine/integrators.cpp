@@ -18,13 +18,11 @@ std::optional<Enum> parse_name(const char* const (&names)[N], std::string_view n
 // rotate_by, here so the body loops inline it.
 inline Quat exact_rotation(const Quat& q, const Vec3& omega_world, double dt) {
   const Vec3 theta = dt * omega_world;
-  const double angle = theta.norm();
+  const double angle = stable_norm(theta);
   // sin(angle/2)/angle, by its Taylor series 1/2 − angle²/48 near 0 (error < angle⁴/3840).
   const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
   const Quat rotation(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
-  Quat result = rotation * q;
-  result.normalize();
-  return result;
+  return unit(Quat(rotation * q));
 }
 
 // implicit_gyroscopic_step, here so the body loops inline it.
@@ -145,7 +143,7 @@ struct Slope {
 
 Slope slope(const Body& b, const Vec3& velocity, const Quat& q, const Vec3& angular_velocity,
             const Vec3& force, const Vec3& torque, const Vec3& gravity) {
-  const Mat3 r = q.normalized().toRotationMatrix();
+  const Mat3 r = unit(q).toRotationMatrix();
   const Vec3 omega_body = r.transpose() * angular_velocity;
   const Vec3 torque_body = r.transpose() * torque;
   const Quat omega_quat(0.0, angular_velocity.x(), angular_velocity.y(), angular_velocity.z());
@@ -182,7 +180,7 @@ void rk4_constant_forces(Body& b, const Vec3& gravity, double dt) {
   b.position += sixth * (k1.velocity + 2.0 * (k2.velocity + k3.velocity) + k4.velocity);
   b.orientation = add(q, sixth, k1.orientation + 2.0 * (k2.orientation + k3.orientation) +
                                     k4.orientation);
-  b.orientation.normalize();
+  b.orientation = unit(b.orientation);
   b.velocity += sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) +
                          k4.acceleration);
   b.angular_velocity += sixth * (k1.angular_acceleration +
@@ -201,7 +199,7 @@ void write_state(Body& b, const BodyState& base, double h, const Vec3& dx, const
   b.velocity = base.velocity + h * dv;
   b.angular_velocity = base.angular_velocity + h * dw;
   stage_q = add(base.orientation, h, dq);
-  b.orientation = stage_q.normalized();
+  b.orientation = unit(stage_q);
   b.force = base.force;
   b.torque = base.torque;
 }

@@ -30,18 +30,52 @@ SymmetricEigen symmetric_eigen(const Mat3& symmetric) {
   return result;
 }
 
+namespace {
+
+// Sums of squares between these are computed without harm (well inside DBL_MIN .. DBL_MAX, so
+// no component's square overflowed and the ones that underflowed do not matter).
+constexpr double smallest_safe_squares = 1e-280;
+constexpr double largest_safe_squares = 1e280;
+
+bool safe_squares(double squares) {
+  return squares >= smallest_safe_squares && squares <= largest_safe_squares;
+}
+
+template <class V>
+double stable_norm_of(const V& v) {
+  const double squares = v.squaredNorm();
+  if (safe_squares(squares)) return std::sqrt(squares);
+  const double scale = v.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale)) return scale;  // 0, inf or NaN as they are
+  return scale * (v / scale).norm();
+}
+
+template <class V>
+V unit_of(const V& v) {
+  const double squares = v.squaredNorm();
+  if (safe_squares(squares)) return v / std::sqrt(squares);
+  const V scaled = v / v.cwiseAbs().maxCoeff();  // largest |component| exactly 1
+  return scaled / scaled.norm();
+}
+
+}  // namespace
+
+double stable_norm(const Vec3& v) { return stable_norm_of(v); }
+double stable_norm(const Quat& q) { return stable_norm_of(q.coeffs()); }
+Vec3 unit(const Vec3& v) { return unit_of(v); }
+Quat unit(const Quat& q) { return Quat(unit_of(Eigen::Vector4d(q.coeffs()))); }
+
 Quat quat_from_axis_angle(const Vec3& axis, double angle) {
-  const double length = axis.norm();
-  if (!is_finite(axis) || !(length > 0.0))
+  if (!is_finite(axis) || is_zero(axis))
     throw std::invalid_argument("axis must be a finite non-zero vector");
   if (!std::isfinite(angle)) throw std::invalid_argument("angle must be finite");
   const double half = 0.5 * angle;
-  const Vec3 v = axis / length * std::sin(half);
+  const Vec3 v = unit(axis) * std::sin(half);
   return Quat(std::cos(half), v.x(), v.y(), v.z());
 }
 
 void quat_to_axis_angle(const Quat& q_in, Vec3& axis, double& angle) {
-  Quat q = q_in.normalized();
+  Quat q = unit(q_in);
   if (q.w() < 0.0) q.coeffs() *= -1.0;  // same rotation, angle in [0, pi]
   const double s = q.vec().norm();
   angle = 2.0 * std::atan2(s, q.w());

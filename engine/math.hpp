@@ -28,6 +28,20 @@ struct SymmetricEigen {
 };
 SymmetricEigen symmetric_eigen(const Mat3& symmetric);
 
+// Euclidean length and direction without overflow or underflow in the squares: the plain
+// v / sqrt(v·v) turns (1e300, 1e300, 0) into (0, 0, 0) (v·v overflows to inf) and
+// (1e-320, 0, 0) into NaN (v·v underflows to 0). When v·v is not a comfortable normal number
+// these divide by the largest |component| first, as LAPACK's dnrm2 and Eigen's stableNorm do
+// (Blue, "A Portable Fortran Program to Find the Euclidean Norm of a Vector", ACM TOMS 4(1),
+// 1978); otherwise they compute exactly what Eigen's norm() and normalized() compute.
+// Every normalisation in the engine and the bindings goes through these.
+double stable_norm(const Vec3& v);
+double stable_norm(const Quat& q);  // of the four coefficients
+// v / |v|. v must be finite and non-zero (test with is_finite and is_zero first); otherwise
+// the result is not finite.
+Vec3 unit(const Vec3& v);
+Quat unit(const Quat& q);
+
 // Rotation of `angle` radians about `axis` (any non-zero length). Throws std::invalid_argument
 // for a zero or non-finite axis.
 Quat quat_from_axis_angle(const Vec3& axis, double angle);
@@ -42,6 +56,10 @@ inline bool is_finite(double x) { return x - x == 0.0; }
 inline bool is_finite(const Vec3& v) { return (v - v).squaredNorm() == 0.0; }
 inline bool is_finite(const Mat3& m) { return (m - m).squaredNorm() == 0.0; }
 inline bool is_finite(const Quat& q) { return (q.coeffs() - q.coeffs()).squaredNorm() == 0.0; }
+
+// Exactly zero (every component 0): a vector of any tiny length, even 1e-320, is non-zero.
+inline bool is_zero(const Vec3& v) { return (v.array() == 0.0).all(); }
+inline bool is_zero(const Quat& q) { return (q.coeffs().array() == 0.0).all(); }
 
 // Largest |a_ij - a_ji| over the off-diagonal pairs: 0 for an exactly symmetric matrix.
 double asymmetry(const Mat3& m);

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <stdexcept>
+
+#include "engine/format.hpp"
 
 namespace rigidlab {
 namespace {
+
+// Ten significant digits: these messages list several values.
+std::string number(double x, int digits = 10) { return format_number(x, digits); }
 
 // A triangle whose doubled area is below this fraction of its longest edge squared is
 // degenerate (collinear vertices); a volume below this fraction of the bounding box's
@@ -15,11 +19,6 @@ namespace {
 constexpr double degenerate_area_tolerance = 1e-12;
 constexpr double zero_volume_tolerance = 1e-12;
 
-std::string number(double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.10g", x);
-  return buffer;
-}
 
 // 1-based numbers for messages.
 std::string nth(std::size_t index) { return std::to_string(index + 1); }

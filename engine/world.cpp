@@ -1,7 +1,8 @@
 #include "engine/world.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "engine/format.hpp"
 
 namespace rigidlab {
 
@@ -36,12 +37,6 @@ Body BodyStore::erase(Id id) {
 // ---- World ----------------------------------------------------------------------------------
 
 namespace {
-
-std::string number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.14g", x);
-  return buffer;
-}
 
 // The velocities that move the positions in each integrator's step (engine/contact_solver.hpp).
 ContactVelocities contact_velocities(Integrator integrator) {
@@ -238,7 +233,7 @@ std::size_t World::integrate(double t, double dt, BodyState* save_to) {
 
 void World::step(double dt, long count, const std::function<void()>& between_steps) {
   if (!std::isfinite(dt) || !(dt > 0.0))
-    throw std::invalid_argument("dt must be finite and > 0, got " + number(dt));
+    throw std::invalid_argument("dt must be finite and > 0, got " + format_number(dt));
   if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
   require_not_stepping(*this, "step the world");
   // With force elements, forces are evaluated (and callbacks may throw) before the first
@@ -282,9 +277,9 @@ void World::throw_non_finite(std::size_t index, double t0, double t1, double cal
                                                       : "orientation";
   throw StepError("body " + std::to_string(index + 1) + " of " +
                       std::to_string(bodies().size()) + " would get a non-finite " + what +
-                      " in the step from t = " + number(t0) + " s to t = " + number(t1) +
+                      " in the step from t = " + format_number(t0) + " s to t = " + format_number(t1) +
                       " s; nothing was changed (the world is still at t = " +
-                      number(call_start) + " s)",
+                      format_number(call_start) + " s)",
                   index, t0);
 }
 

@@ -278,12 +278,4 @@ void check_stop(lua_State* L) {
   if (entry != nullptr && entry->check != nullptr) entry->check(L, entry->data);
 }
 
-std::string format_number(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.14g", x);
-  return buffer;
-}
-
 }  // namespace rigidlab::lua

@@ -14,6 +14,7 @@
 #include <new>
 #include <string>
 
+#include "engine/format.hpp"
 #include "engine/math.hpp"
 
 namespace rigidlab::lua {
@@ -135,7 +136,8 @@ using StopCheck = void (*)(lua_State* L, void* data);
 void set_stop_check(lua_State* L, StopCheck check, void* data);
 void check_stop(lua_State* L);
 
-// Formats a number the way Lua's tostring does ("%.14g"), integers without ".0".
-std::string format_number(double x);
+// Formats a number the way Lua's tostring does ("%.14g"), nan/inf/-inf for the non-finite
+// (engine/format.hpp: one formatter for engine and binding messages).
+using rigidlab::format_number;
 
 }  // namespace rigidlab::lua

@@ -89,13 +89,12 @@ Quat field_orientation(lua_State* L) {
   }
   const Quat* q = test_quat(L, -1);
   if (q == nullptr) arg_error(L, 1, "field 'orientation' must be a quat, got %s", top_type_name(L));
-  const double norm = q->norm();
   if (!is_finite(*q)) arg_error(L, 1, "field 'orientation' must be finite");
-  if (!(norm > 0.0))
+  if (is_zero(*q))
     arg_error(L, 1, "field 'orientation' is the zero quaternion, which is not a rotation");
-  const Quat unit = q->normalized();
+  const Quat rotation = unit(*q);
   lua_pop(L, 1);
-  return unit;
+  return rotation;
 }
 
 // position, orientation, velocity, angular_velocity of a constructor table into b.
@@ -263,8 +262,8 @@ Quat new_orientation(lua_State* L) {
     luaL_error(L, "body.orientation: quat expected, got %s", top_type_name(L));
   }
   if (!is_finite(*q)) luaL_error(L, "body.orientation must be finite");
-  if (!(q->norm() > 0.0)) luaL_error(L, "body.orientation: the zero quaternion is not a rotation");
-  return q->normalized();
+  if (is_zero(*q)) luaL_error(L, "body.orientation: the zero quaternion is not a rotation");
+  return unit(*q);
 }
 
 // b.restitution = e or b.friction = μ, the value at index 3 (engine/plane.hpp's rules).

@@ -238,7 +238,7 @@ int rotate(lua_State* L) {
   check_no_extra_args(L, 2);
   const Mat3& I = check_tensor(L, 1);
   if (const Quat* q = test_quat(L, 2)) {
-    if (!(q->norm() > 0.0)) arg_error(L, 2, "the rotation quaternion must be non-zero");
+    if (is_zero(*q)) arg_error(L, 2, "the rotation quaternion must be non-zero");
     push_result(L, engine_call(L, [&] { return rotate_inertia(I, *q); }));
     return 1;
   }
@@ -254,7 +254,7 @@ int about_axis(lua_State* L) {
   check_no_extra_args(L, 2);
   const Mat3& I = check_tensor(L, 1);
   const Vec3& n = check_vec3(L, 2);
-  if (!(n.norm() > 0.0)) arg_error(L, 2, "the axis must be a non-zero vector");
+  if (is_zero(n)) arg_error(L, 2, "the axis must be a non-zero vector");
   push_result(L, engine_call(L, [&] { return rigidlab::about_axis(I, n); }));
   return 1;
 }

@@ -320,11 +320,7 @@ std::string format_value(lua_State* L, int index, const std::string& indent) {
   index = lua_absindex(L, index);
   if (lua_type(L, index) == LUA_TNUMBER) {
     if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
-    char buffer[32];
-    const double x = lua_tonumber(L, index);
-    if (!std::isfinite(x)) return format_number(x);
-    std::snprintf(buffer, sizeof buffer, "%.10g", x);
-    return buffer;
+    return format_number(lua_tonumber(L, index), 10);
   }
   if (const Mat3* m = test_mat3(L, index)) {
     if (indent.empty()) {

@@ -18,9 +18,8 @@ Quat& push_finite_quat(lua_State* L, const Quat& q) {
 // The quaternion at `arg` as a unit rotation; error for the zero quaternion.
 Quat check_rotation(lua_State* L, int arg) {
   const Quat& q = check_quat(L, arg);
-  const double n = q.norm();
-  if (!(n > 0.0)) arg_error(L, arg, "the zero quaternion is not a rotation");
-  return Quat(q.coeffs() / n);
+  if (is_zero(q)) arg_error(L, arg, "the zero quaternion is not a rotation");
+  return unit(q);
 }
 
 // quat(w, x, y, z); quat() is the identity.
@@ -47,7 +46,7 @@ int quat_axis_angle_new(lua_State* L) {
   const Vec3& axis = check_vec3(L, 1);
   const double angle = check_finite(L, 2, "angle");
   check_no_extra_args(L, 2);
-  if (!(axis.norm() > 0.0)) arg_error(L, 1, "axis must be non-zero");
+  if (is_zero(axis)) arg_error(L, 1, "axis must be non-zero");
   push_quat(L, quat_from_axis_angle(axis, angle));
   return 1;
 }
@@ -63,7 +62,7 @@ int quat_from_mat3(lua_State* L) {
   if (r.determinant() < 0.0) arg_error(L, 1, "matrix is a reflection (det = -1), not a rotation");
   Quat q(r);
   if (q.w() < 0.0) q.coeffs() *= -1.0;
-  push_quat(L, q.normalized());
+  push_quat(L, unit(q));
   return 1;
 }
 
@@ -206,7 +205,7 @@ int quat_inverse(lua_State* L) {
 int quat_norm(lua_State* L) {
   const Quat& q = check_quat(L, 1);
   check_no_extra_args(L, 1);
-  lua_pushnumber(L, q.norm());
+  lua_pushnumber(L, stable_norm(q));
   return 1;
 }
 

@@ -157,16 +157,15 @@ int vec3_cross(lua_State* L) {
 int vec3_norm(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   check_no_extra_args(L, 1);
-  lua_pushnumber(L, a.norm());
+  lua_pushnumber(L, stable_norm(a));
   return 1;
 }
 
 int vec3_normalized(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   check_no_extra_args(L, 1);
-  const double length = a.norm();
-  if (!(length > 0.0)) arg_error(L, 1, "cannot normalize the zero vector");
-  push_finite_vec3(L, a / length);
+  if (is_zero(a)) arg_error(L, 1, "cannot normalize the zero vector");
+  push_finite_vec3(L, unit(a));
   return 1;
 }
 

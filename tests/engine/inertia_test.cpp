@@ -338,6 +338,18 @@ TEST(AboutAxis, IsTheMomentOfTheMassAboutThatLine) {
   EXPECT_THROW(about_axis(p.inertia, Vec3(std::nan(""), 0, 0)), std::invalid_argument);
 }
 
+// Axes and quaternions of any length, 1e300 (squares overflow) or 1e-320 (squares underflow),
+// mean their direction: diag(1, 2, 3) about (1, 1, 0)/√2 is (1 + 2)/2, and a quarter turn
+// about x swaps the y and z moments.
+TEST(AboutAxisAndRotate, HugeAndTinyDirectionsAreNormalisedWithoutOverflow) {
+  const Mat3 I = Vec3(1, 2, 3).asDiagonal();
+  const Mat3 turned = Vec3(1, 3, 2).asDiagonal();
+  for (double a : {1e300, 1e-320}) {
+    EXPECT_NEAR(about_axis(I, Vec3(a, a, 0)), 1.5, 1e-15) << a;
+    EXPECT_LT((rotate_inertia(I, Quat(a, a, 0, 0)) - turned).norm(), 1e-14) << a;
+  }
+}
+
 TEST(Principal, RecoversDiagonalAndRotationUpToAxisSigns) {
   std::mt19937 rng(9);
   const Vec3 moments(1.0, 2.5, 3.0);

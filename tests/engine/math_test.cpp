@@ -86,6 +86,42 @@ TEST(AxisAngle, ZeroOrNonFiniteAxisIsRefused) {
   EXPECT_THROW(quat_from_axis_angle(Vec3(1, 0, 0), INFINITY), std::invalid_argument);
 }
 
+// |(a, a, 0)| = √2 a and its direction (1, 1, 0)/√2 at every scale, including those where
+// a² overflows (1e300) or underflows (1e-170, and the subnormal 1e-320 with no square at all).
+TEST(StableNorm, HugeAndTinyVectorsKeepTheirLengthAndDirection) {
+  const double root2 = std::sqrt(2.0);
+  for (double a : {1.0, 1e300, 1e-170, 1e-300}) {
+    const Vec3 v(a, a, 0);
+    EXPECT_NEAR(stable_norm(v) / a, root2, 1e-15) << a;
+    EXPECT_LT((unit(v) - Vec3(1, 1, 0) / root2).norm(), 1e-15) << a;
+    const Quat q(a, 0, -a, 0);
+    EXPECT_NEAR(stable_norm(q) / a, root2, 1e-15) << a;
+    EXPECT_LT((unit(q).coeffs() - Eigen::Vector4d(0, -1, 0, 1) / root2).norm(), 1e-15) << a;
+  }
+  EXPECT_EQ(stable_norm(Vec3(1e-320, 0, 0)), 1e-320);  // a subnormal: its square is 0
+  EXPECT_EQ(unit(Vec3(0, 0, -1e-320)), Vec3(0, 0, -1));
+  EXPECT_EQ(stable_norm(Vec3(3, 4, 0)), 5.0);
+  EXPECT_EQ(stable_norm(Vec3(1e308, 1e308, 0)), std::sqrt(2.0) * 1e308);
+  EXPECT_EQ(stable_norm(Vec3::Zero()), 0.0);
+  EXPECT_TRUE(std::isinf(stable_norm(Vec3(INFINITY, 0, 0))));
+}
+
+TEST(StableNorm, ZeroMeansEveryComponentZero) {
+  EXPECT_TRUE(is_zero(Vec3::Zero()));
+  EXPECT_FALSE(is_zero(Vec3(0, 1e-320, 0)));
+  EXPECT_TRUE(is_zero(Quat(0, 0, 0, 0)));
+  EXPECT_FALSE(is_zero(Quat(0, 0, 0, -1e-320)));
+}
+
+// A quarter turn about (1, 1, 0) given with a huge or tiny axis maps z to (1, -1, 0)/√2.
+TEST(AxisAngle, HugeAndTinyAxesGiveTheSameUnitRotation) {
+  for (double a : {1e300, 1e-320}) {
+    const Quat q = quat_from_axis_angle(Vec3(a, a, 0), M_PI / 2);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-15) << a;
+    EXPECT_LT((q * Vec3::UnitZ() - Vec3(1, -1, 0) / std::sqrt(2.0)).norm(), 1e-15) << a;
+  }
+}
+
 TEST(Finite, DetectsNanAndInfinity) {
   EXPECT_TRUE(is_finite(Vec3(1, 2, 3)));
   EXPECT_FALSE(is_finite(Vec3(1, NAN, 3)));

@@ -31,6 +31,14 @@ T.case("state fields: defaults, writes, normalisation", function()
   T.equal(b.orientation, quat.identity(), "orientation normalised on write")
   local c = body{mass = 1, inertia = mat3.identity(), orientation = quat(0, 0, 0, 3)}
   T.equal(c.orientation, quat(0, 0, 0, 1), "orientation normalised in the constructor")
+  -- Huge and tiny quaternions are rotations too: (a, a, 0, 0) is a quarter turn about x.
+  local r = math.sqrt(0.5)
+  for _, a in ipairs{1e200, 1e-320} do
+    local d = body{mass = 1, inertia = mat3.identity(), orientation = quat(a, a, 0, 0)}
+    T.near(d.orientation, quat(r, r, 0, 0), 1e-15, "constructor, scale " .. a)
+    d.orientation = quat(0, 0, a, a)
+    T.near(d.orientation, quat(0, 0, r, r), 1e-15, "setter, scale " .. a)
+  end
 end)
 
 T.case("derived quantities against hand-computed values", function()
@@ -163,6 +171,10 @@ T.case("field errors", function()
   T.fails(function() b.orientation = quat(0, 0, 0, 0) end,
     "body.orientation: the zero quaternion is not a rotation")
   T.fails(function() b.position = vec3(0 / 0, 0, 0) end, "")  -- a vec3 cannot even hold NaN
+  -- NaN reads "nan" (printf writes the 0/0 of x86 as "-nan").
+  T.fails(function() b.friction = 0 / 0 end, "body.friction must be finite and >= 0, got nan")
+  T.fails(function() b.restitution = 0 / 0 end, "body.restitution must be in [0, 1], got nan")
+  T.fails(function() b.friction = -math.huge end, "body.friction must be finite and >= 0, got -inf")
   local s = body{static = true}
   T.fails(function() s.velocity = vec3(1, 0, 0) end,
     "body.velocity of a static body must stay zero (it never moves)")

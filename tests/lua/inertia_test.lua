@@ -74,6 +74,14 @@ T.case("parallel axis, rotation and moment about an axis", function()
     "a quaternion is normalised")
   local n = vec3(1, 2, 2) / 3
   T.near(inertia.about_axis(box, vec3(1, 2, 2)), n:dot(box * n), 1e-15, "n normalised")
+  -- Any scale of axis or quaternion, also where its squares overflow or underflow: box has
+  -- moments (13, 10, 5)/12, so about (1, 1, 0) it is (13 + 10)/24, and a quarter turn about x
+  -- swaps the y and z moments.
+  for _, a in ipairs{1e300, 1e-320} do
+    T.near(inertia.about_axis(box, vec3(a, a, 0)), 23 / 24, 1e-15, "huge or tiny axis " .. a)
+    T.near(inertia.rotate(box, quat(a, a, 0, 0)), mat3.diag(13 / 12, 5 / 12, 10 / 12), 1e-15,
+      "huge or tiny quaternion " .. a)
+  end
 end)
 
 T.case("principal recovers a rotated diagonal", function()

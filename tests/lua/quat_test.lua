@@ -26,6 +26,19 @@ T.case("known rotations", function()
     "half turn")
 end)
 
+T.case("huge and tiny quaternions and axes mean their direction", function()
+  -- (a, a, 0, 0) normalises to (√½, √½, 0, 0) even where a² overflows or underflows; a
+  -- quarter turn about (1, 1, 0) maps z to (1, −1, 0)/√2 whatever the axis length.
+  local r = math.sqrt(0.5)
+  for _, a in ipairs{1e200, 1e300, 1e-170, 1e-320} do
+    T.near(quat(a, a, 0, 0):normalized(), quat(r, r, 0, 0), 1e-15, "normalized " .. a)
+    if a > 1e-308 then T.near(quat(a, a, 0, 0):norm() / a, math.sqrt(2), 1e-15, "norm " .. a) end
+    local q = quat.axis_angle(vec3(a, a, 0), math.pi / 2)
+    T.near(q:norm(), 1, 1e-15, "axis_angle unit " .. a)
+    T.near(q:rotate(vec3(0, 0, 1)), vec3(r, -r, 0), 1e-15, "axis_angle turn " .. a)
+  end
+end)
+
 T.case("random rotations", function()
   for _ = 1, 200 do
     local q, r = random_rotation(), random_rotation()

@@ -53,6 +53,16 @@ T.case("products against their defining identities", function()
   T.equal(select("#", vec3(1, 2, 3):unpack()), 3, "unpack count")
 end)
 
+T.case("norm and normalized at huge and tiny scales", function()
+  -- |(a, a, 0)| = √2 a with direction (1, 1, 0)/√2, also where a² overflows or underflows
+  -- (a subnormal length like √2·1e-320 has too few digits to compare, its direction has not).
+  local r = math.sqrt(0.5)
+  for _, a in ipairs{1e300, 1e-170, 1e-300, 1e-320} do
+    if a > 1e-308 then T.near(vec3(a, a, 0):norm() / a, math.sqrt(2), 1e-15, "norm " .. a) end
+    T.near(vec3(a, a, 0):normalized(), vec3(r, r, 0), 1e-15, "normalized " .. a)
+  end
+end)
+
 T.case("metatable is protected", function()
   T.equal(getmetatable(vec3()), "vec3", "getmetatable")
   T.fails(function() setmetatable(vec3(), {}) end, "table expected, got vec3", "setmetatable")
