@@ -45,12 +45,15 @@ x changes (1 N·s/m), which is what eventually stops the bouncing. Hang a 1 kg b
 target by its centre and it comes to rest where the spring balances its weight: k·d = m·g,
 so d = mg/k = 9.81/15 = 0.654 m below the target (0.6533 m with 001's g = 9.8).
 
-Two details of 001's code are worth knowing when you copy it. It estimates the damper's
+Three details of 001's code are worth knowing when you copy it. It estimates the damper's
 speed by a difference between frames, (x − x_previous)/Δt, and starts x_previous at zero,
 so on the first frame a box starting 0.1 m from its target at 60 frames per second gets a
 damper force of 1·0.1·60 = 6 N for nothing; it also declares that variable as
 previous_length but uses previous_spring_len. rigidlab's spring uses the exact velocities of
-the two ends instead, and applies the damper along the spring's line.]],
+the two ends instead, and applies the damper along the spring's line. And 001 applies
+gravity as the impulse (0, −9.8, 0)·Δt through apply_linear_impulse, which multiplies by
+the inverse mass: that gives the acceleration 9.8/m, right only for a 1 kg body, since the
+impulse of gravity is m·g·Δt. (Our box has 1 kg, where the two agree.)]],
       formula = "F = k·x + c·dx/dt,   x = target − point;   at rest: k·d = m·g  ⇒  d = mg/k",
       run = function(ctx)
         ctx:show("k (N/m)", k)
@@ -102,7 +105,8 @@ sits mg/k below the target, exactly as before.
 The spring's damper only resists stretching, and a box swinging about its corner hardly
 stretches it, so we add a little air drag (w:add_drag) to let it settle within a minute;
 drag vanishes at rest, so it does not change where the box ends up.]],
-      formula = "at rest: attachment = target − (mg/k)ŷ,   centre = attachment − |r_attach|·ŷ",
+      formula = "at rest: attachment = target − (mg/k)ŷ\n" ..
+                "         centre = attachment − |r_attach|·ŷ",
       run = function(ctx)
         local corner = box_size / 2          -- body coordinates of the top corner
         local w, box = hanging_box(corner)
