@@ -10,7 +10,8 @@ local function dot12(x, y)
   return sum
 end
 
-local function jacobian(ra, rb, n) return {-n, -ra:cross(n), n, rb:cross(n)} end
+-- (Subtracting from the zero vector keeps zero components +0 when printed.)
+local function jacobian(ra, rb, n) return {vec3() - n, vec3() - ra:cross(n), n, rb:cross(n)} end
 local function velocities(a, b)
   return {a.velocity, a.angular_velocity, b.velocity, b.angular_velocity}
 end
@@ -60,7 +61,9 @@ velocities. Each block of J says how much one velocity component opens or closes
 
 Here two boxes touch at a point off both centres. The Jacobian's blocks come from the
 offsets ra and rb of the contact from each centre of mass, and J v must equal the relative
-normal velocity of the two contact points as the engine reports it (b:point_velocity).]],
+normal velocity of the two contact points as the engine reports it (b:point_velocity).
+(Appendix D drops a subscript on the way: after the rearrangement its second term reads
+ω·(rb×n), where ωb, the angular velocity of body b, is meant.)]],
       formula = "dC/dt = n·(vb + ωb×rb − va − ωa×ra)\n" ..
                 "      = [−n, −ra×n, n, rb×n]·[va, ωa, vb, ωb] = J v",
       run = function(ctx)
