@@ -44,9 +44,9 @@ about z: equal and opposite. We hang both weights on a 4 m plank whose centre si
 pivot, and let the pivot push up with the 40 N it must carry. In a rigidlab world the plank
 then neither falls nor turns. Make the right weight 12 N and it starts to tip.
 
-Two small slips on the slide: it writes the law with bold (vector) F₁, F₂, but it is a law
-about the magnitudes (the two weights point the same way, yet turn opposite ways); and it
-says "a level is in equilibrium" where "a lever" is meant.]],
+A small slip on the slide: it says "a level is in equilibrium" where "a lever" is meant.
+It prints F₁ and F₂ in bold, as vectors; read the law as one about their sizes and arms,
+since what balances are two moments of opposite sense (+15 and −15 N·m here).]],
       formula = "F₁·h₁ = F₂·h₂   (magnitudes; h measured from the pivot)",
       run = function(ctx)
         local h1, h2, f1 = 0.5, 1.5, 30
