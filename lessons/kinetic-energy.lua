@@ -102,10 +102,11 @@ either frame: ωᵀ·I_world·ω = ω_bodyᵀ·I_body·ω_body, with ω_body = R
       title = "In momentum form: ½p·v + ½L·ω",
       text = [[
 003 writes the same energy with momenta: ½p·v for the travel (p = mv, so that is ½mv²) and
-½L·ω for the spin (L = Iω, so that is ½ωᵀIω). The linear half looks like a trivial rewrite,
-but the angular half is useful: it shows that the energy is the projection of L on ω. The
-spin energy is largest for a given |L| when ω and L are parallel, which happens only about a
-principal axis.
+½L·ω for the spin (L = Iω, so that is ½ωᵀIω). The linear half
+looks like a trivial rewrite, but the angular half is useful: it shows that the energy is the
+projection of L on ω. For a given |L| the spin energy ½LᵀI⁻¹L lies between |L|²/(2I_max) and
+|L|²/(2I_min): the extremes come with L along the principal axes of largest and smallest
+moment, where ω is parallel to L.
 
 We take p and L from the engine and check L against its definition as a sum over particles,
 Σ rᵢ × mᵢvᵢ.
