@@ -107,7 +107,7 @@ the x and y offsets mostly have opposite signs and −∫xy dm comes out positiv
       title = "Re-centre and diagonalise",
       text = [[
 The slides' recipe for an arbitrary mesh: compute its properties, move the mesh so its centre
-of mass sits at the origin, then turn it so its principal axes line up with x, y and z. After
+of mass sits at the origin, then turn it so its principal axes point along x, y and z. After
 that the body is described by four numbers, the mass and three principal moments, exactly as
 a simulation wants it.
 

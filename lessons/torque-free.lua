@@ -58,7 +58,7 @@ return lesson{
     {
       title = "Spin without torque still changes ω",
       text = [[
-Solve the Newton-Euler equations for the accelerations: a = f/m, and for the rotation
+Rearranged for the accelerations, the Newton-Euler equations give a = f/m and, for the rotation,
 ω̇ = I⁻¹(τ − ω × Iω). With no force the centre of mass coasts. With no torque, though, ω
 can still change: ω̇ = −I⁻¹(ω × Iω). The term vanishes only when Iω is parallel to ω, that
 is when the body spins about a principal axis. Our box has three different moments, and
