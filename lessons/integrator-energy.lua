@@ -43,7 +43,7 @@ return lesson{
 A 2 kg mass on a spring of stiffness 8 N/m is pulled 0.5 m aside and let go. With no
 friction its energy, E = ½mv² + ½kx², can only slosh back and forth between the moving
 mass and the stretched spring; the total must stay at its starting value (003, "Energy":
-the energy of an isolated system is constant). That makes the spring a perfect lie
+an isolated system keeps its total energy). That makes the spring a perfect lie
 detector for integrators: any change in E is numerical error.
 
 The exact motion is x = x₀·cos(ωt) with ω = √(k/m) = 2 rad/s, one swing every π
