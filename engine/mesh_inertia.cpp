@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/format.hpp"
+#include "engine/inertia.hpp"
 
 namespace rigidlab {
 namespace {
@@ -18,10 +19,47 @@ std::string number(double x, int digits = 10) { return format_number(x, digits);
 // largest side cubed is zero.
 constexpr double degenerate_area_tolerance = 1e-12;
 constexpr double zero_volume_tolerance = 1e-12;
+// The second moments are sums of terms of order extent⁵ (a face normal, extent², times cubic
+// polynomials of the coordinates), so a mesh spanning more than about 1e61 m overflows and one
+// spanning less than about 1e-61 m underflows to nothing; these limits keep a margin.
+constexpr double largest_extent = 1e60;
+constexpr double smallest_extent = 1e-60;
 
+const double pi = std::acos(-1.0);
 
 // 1-based numbers for messages.
 std::string nth(std::size_t index) { return std::to_string(index + 1); }
+
+// The largest side of the bounding box of the vertices the triangles use (m); indices valid.
+double extent_of(const std::vector<Vec3>& vertices, const std::vector<MeshTriangle>& triangles) {
+  Vec3 low = vertices[triangles[0][0]], high = low;
+  for (const MeshTriangle& tri : triangles)
+    for (int index : tri) {
+      low = low.cwiseMin(vertices[index]);
+      high = high.cwiseMax(vertices[index]);
+    }
+  return (high - low).maxCoeff();
+}
+
+std::string extent_problem(double extent) {
+  if (extent > largest_extent)
+    return "the mesh is too large to integrate: it spans " + number(extent) +
+           " m, and its second moments (of order span⁵) would overflow; express it in larger "
+           "units (it must span at most " + number(largest_extent) + " m)";
+  if (extent > 0.0 && extent < smallest_extent)
+    return "the mesh is too small to integrate: it spans " + number(extent) +
+           " m, and its second moments (of order span⁵) would underflow to zero; express it "
+           "in smaller units (it must span at least " + number(smallest_extent) + " m)";
+  return {};
+}
+
+// Collinear vertices: twice the area is below the tolerance times the longest edge squared.
+// (Within the extents extent_problem admits, the squares neither overflow nor underflow.)
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double longest =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return !((b - a).cross(c - a).norm() > degenerate_area_tolerance * longest);
+}
 
 std::string element_problem(const std::vector<Vec3>& vertices,
                             const std::vector<MeshTriangle>& triangles) {
@@ -38,16 +76,17 @@ std::string element_problem(const std::vector<Vec3>& vertices,
       if (index < 0 || index >= count)
         return "triangle " + nth(t) + " refers to vertex " + std::to_string(index + 1LL) +
                ", but the vertices are numbered 1 to " + std::to_string(count);
-    const std::string listed =
-        "(" + nth(tri[0]) + ", " + nth(tri[1]) + ", " + nth(tri[2]) + ")";
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      return "triangle " + nth(t) + " " + listed + " is degenerate: it repeats a vertex";
-    const Vec3 &a = vertices[tri[0]], &b = vertices[tri[1]], &c = vertices[tri[2]];
-    const double longest =
-        std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    if (!((b - a).cross(c - a).norm() > degenerate_area_tolerance * longest))
-      return "triangle " + nth(t) + " " + listed +
-             " is degenerate: its vertices are collinear (zero area)";
+      return "triangle " + nth(t) + " (" + nth(tri[0]) + ", " + nth(tri[1]) + ", " +
+             nth(tri[2]) + ") is degenerate: it repeats a vertex";
+  }
+  const std::string problem = extent_problem(extent_of(vertices, triangles));
+  if (!problem.empty()) return problem;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const MeshTriangle& tri = triangles[t];
+    if (collinear(vertices[tri[0]], vertices[tri[1]], vertices[tri[2]]))
+      return "triangle " + nth(t) + " (" + nth(tri[0]) + ", " + nth(tri[1]) + ", " +
+             nth(tri[2]) + ") is degenerate: its vertices are collinear (zero area)";
   }
   return {};
 }
@@ -100,11 +139,10 @@ std::string edge_group_problem(const std::vector<EdgeUse>& uses, std::size_t fir
   return {};
 }
 
-// The first bad edge in the order of the triangles that use it.
-std::string edge_problem(const std::vector<MeshTriangle>& triangles) {
-  const std::vector<EdgeUse> uses = edge_uses(triangles);
+// The first bad edge in the order of the triangles that use it (`uses` from edge_uses).
+std::string edge_problem(const std::vector<EdgeUse>& uses, std::size_t triangle_count) {
   std::string problem;
-  std::size_t problem_triangle = triangles.size();
+  std::size_t problem_triangle = triangle_count;
   for (std::size_t first = 0; first < uses.size();) {
     std::size_t last = first + 1;
     while (last < uses.size() && uses[last].key == uses[first].key) ++last;
@@ -118,6 +156,103 @@ std::string edge_problem(const std::vector<MeshTriangle>& triangles) {
     first = last;
   }
   return problem;
+}
+
+// ---- pieces: the closed surfaces a mesh is made of -------------------------------------------
+
+// Triangles that share an edge belong to the same piece, so on a mesh whose edges passed
+// edge_problem each piece is a closed surface of its own. The piece of every triangle,
+// numbered from 0 in the order of the pieces' first triangles (union-find over the edges).
+std::vector<std::size_t> piece_of_triangles(const std::vector<EdgeUse>& uses,
+                                            std::size_t triangle_count) {
+  std::vector<std::size_t> parent(triangle_count);
+  for (std::size_t t = 0; t < triangle_count; ++t) parent[t] = t;
+  const auto root = [&parent](std::size_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  for (std::size_t i = 0; i + 1 < uses.size(); ++i)
+    if (uses[i].key == uses[i + 1].key)
+      parent[root(uses[i + 1].triangle)] = root(uses[i].triangle);
+  const std::size_t none = triangle_count;
+  std::vector<std::size_t> piece(triangle_count), number_of_root(triangle_count, none);
+  std::size_t count = 0;
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    std::size_t& number = number_of_root[root(t)];
+    if (number == none) number = count++;
+    piece[t] = number;
+  }
+  return piece;
+}
+
+struct Piece {
+  double volume = 0.0;            // signed, m³: negative when wound inside-out
+  std::size_t first_triangle = 0;
+  std::size_t triangle_count = 0;
+};
+
+// The signed volume of each piece: Σ p0·(p1 × p2)/6 over its triangles, the signed volumes of
+// the tetrahedra they span with `reference` (divergence theorem; Mirtich 1996, section 2).
+std::vector<Piece> pieces_of(const std::vector<Vec3>& vertices,
+                             const std::vector<MeshTriangle>& triangles,
+                             const std::vector<std::size_t>& piece_of, const Vec3& reference) {
+  std::vector<Piece> pieces;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (piece_of[t] == pieces.size()) pieces.push_back({0.0, t, 0});
+    Piece& piece = pieces[piece_of[t]];
+    const Vec3 p0 = vertices[triangles[t][0]] - reference;
+    const Vec3 p1 = vertices[triangles[t][1]] - reference;
+    const Vec3 p2 = vertices[triangles[t][2]] - reference;
+    piece.volume += p0.dot(p1.cross(p2)) / 6.0;
+    ++piece.triangle_count;
+  }
+  return pieces;
+}
+
+// The winding number at p of the triangles outside piece `skip`: the sum of their signed solid
+// angles over 4π, each by Van Oosterom & Strackee, "The Solid Angle of a Plane Triangle"
+// (IEEE Trans. Biomed. Eng. 30(2), 1983): tan(Ω/2) = a·(b × c) / (|a||b||c| + (a·b)|c| +
+// (a·c)|b| + (b·c)|a|), a, b, c the vertices relative to p. It is 1 inside a closed surface
+// wound counter-clockwise seen from outside, 0 outside it, −1 inside an inside-out one.
+double winding_number(const std::vector<Vec3>& vertices,
+                      const std::vector<MeshTriangle>& triangles,
+                      const std::vector<std::size_t>& piece_of, std::size_t skip, const Vec3& p) {
+  double solid_angle = 0.0;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (piece_of[t] == skip) continue;
+    const Vec3 a = vertices[triangles[t][0]] - p;
+    const Vec3 b = vertices[triangles[t][1]] - p;
+    const Vec3 c = vertices[triangles[t][2]] - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+    solid_angle += 2.0 * std::atan2(a.dot(b.cross(c)), denominator);
+  }
+  return solid_angle / (4.0 * pi);
+}
+
+// An inside-out piece (negative signed volume) of a mesh with several pieces is a cavity when
+// the other pieces wind once around it: then the solid is hollow there. Anywhere else it would
+// be a solid of negative mass. The exact integrals weight every point by its winding number,
+// so where solid pieces overlap their densities add up; that is allowed (inertia.mesh's
+// documentation says so) and not checked. A mesh of one piece is left to volume_problem.
+std::string piece_problem(const std::vector<Vec3>& vertices,
+                          const std::vector<MeshTriangle>& triangles,
+                          const std::vector<std::size_t>& piece_of,
+                          const std::vector<Piece>& pieces) {
+  if (pieces.size() < 2) return {};
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& piece = pieces[k];
+    if (!(piece.volume < 0.0)) continue;
+    const Vec3& p = vertices[triangles[piece.first_triangle][0]];
+    if (std::lround(winding_number(vertices, triangles, piece_of, k, p)) >= 1) continue;
+    return "piece " + nth(k) + " of the mesh's " + std::to_string(pieces.size()) +
+           " separate closed surfaces (" + std::to_string(piece.triangle_count) +
+           " triangles, the first is triangle " + nth(piece.first_triangle) +
+           ") is inside-out: its signed volume " + number(piece.volume) +
+           " m³ is negative, and it does not lie inside another piece as a cavity would; "
+           "reverse the vertex order of its triangles";
+  }
+  return {};
 }
 
 // Eberly (2002), "Subexpressions": the polynomials in one coordinate (w0, w1, w2 at the three
@@ -194,17 +329,8 @@ Vec3 reference_point(const std::vector<Vec3>& vertices,
   return sum / (3.0 * static_cast<double>(triangles.size()));
 }
 
-std::string volume_problem(const std::vector<Vec3>& vertices,
-                           const std::vector<MeshTriangle>& triangles, double volume) {
-  Vec3 low = vertices[triangles[0][0]], high = low;
-  for (const MeshTriangle& tri : triangles)
-    for (int index : tri) {
-      low = low.cwiseMin(vertices[index]);
-      high = high.cwiseMax(vertices[index]);
-    }
-  const double extent = (high - low).maxCoeff();
-  if (!std::isfinite(volume))
-    return "the volume integrals overflow (coordinates too large: " + number(extent) + " m)";
+// The total signed volume (finite) against the mesh's extent.
+std::string volume_problem(double volume, double extent) {
   if (!(std::abs(volume) > zero_volume_tolerance * extent * extent * extent))
     return "the mesh encloses no volume (signed volume " + number(volume) +
            " m³, zero compared with its extent " + number(extent) + " m)";
@@ -215,14 +341,46 @@ std::string volume_problem(const std::vector<Vec3>& vertices,
   return {};
 }
 
-// Topology and elements, then the volume from the integrals.
+// Eberly (2002), "Computing the Integrals", final step: the COM is ∫r/V; the tensor about the
+// COM follows from the central second moments S = ∫ r rᵀ dV − V c cᵀ as ρ (tr(S) E − S)
+// (seed 000_*, "Inertia": Ixx = ∫(y² + z²) dm, Ixy = −∫xy dm).
+MeshMassProperties mass_properties(const VolumeIntegrals& integrals, double density) {
+  const Vec3 offset = integrals.first / integrals.volume;  // COM relative to the reference
+  const Mat3 central = integrals.second - integrals.volume * offset * offset.transpose();
+  MeshMassProperties result;
+  result.volume = integrals.volume;
+  result.mass = density * integrals.volume;
+  result.com = integrals.reference + offset;
+  result.inertia = density * (central.trace() * Mat3::Identity() - central);
+  return result;
+}
+
+// Elements, topology, then the pieces' and the total volume from the integrals, and last the
+// tensor (of density 1), which must be one a solid can have (engine/inertia.hpp's validator):
+// this catches what the piece test cannot see, such as a cavity that pokes out of its solid.
 std::string full_problem(const std::vector<Vec3>& vertices,
                          const std::vector<MeshTriangle>& triangles, VolumeIntegrals& integrals) {
   std::string problem = element_problem(vertices, triangles);
-  if (problem.empty()) problem = edge_problem(triangles);
   if (!problem.empty()) return problem;
-  integrals = integrate(vertices, triangles, reference_point(vertices, triangles));
-  return volume_problem(vertices, triangles, integrals.volume);
+  const std::vector<EdgeUse> uses = edge_uses(triangles);
+  problem = edge_problem(uses, triangles.size());
+  if (!problem.empty()) return problem;
+  const Vec3 reference = reference_point(vertices, triangles);
+  integrals = integrate(vertices, triangles, reference);
+  const double extent = extent_of(vertices, triangles);
+  if (!std::isfinite(integrals.volume))
+    return "the volume integrals overflow (coordinates too large: " + number(extent) + " m)";
+  const std::vector<std::size_t> piece_of = piece_of_triangles(uses, triangles.size());
+  problem = piece_problem(vertices, triangles, piece_of,
+                          pieces_of(vertices, triangles, piece_of, reference));
+  if (problem.empty()) problem = volume_problem(integrals.volume, extent);
+  if (!problem.empty()) return problem;
+  const std::string tensor =
+      inertia_tensor_problem(mass_properties(integrals, 1.0).inertia, InertiaRules::idealized);
+  if (!tensor.empty())
+    return "the mesh's pieces give an inertia tensor no solid has (" + tensor +
+           "): an inside-out piece (a cavity) must lie wholly inside a solid piece";
+  return {};
 }
 
 }  // namespace
@@ -233,9 +391,6 @@ std::string mesh_problem(const std::vector<Vec3>& vertices,
   return full_problem(vertices, triangles, integrals);
 }
 
-// Eberly (2002), "Computing the Integrals", final step: the COM is ∫r/V; the tensor about the
-// COM follows from the central second moments S = ∫ r rᵀ dV − V c cᵀ as ρ (tr(S) E − S)
-// (seed 000_*, "Inertia": Ixx = ∫(y² + z²) dm, Ixy = −∫xy dm).
 MeshMassProperties inertia_mesh(const std::vector<Vec3>& vertices,
                                 const std::vector<MeshTriangle>& triangles, double density) {
   if (!std::isfinite(density) || !(density > 0.0))
@@ -243,13 +398,7 @@ MeshMassProperties inertia_mesh(const std::vector<Vec3>& vertices,
   VolumeIntegrals integrals;
   const std::string problem = full_problem(vertices, triangles, integrals);
   if (!problem.empty()) throw std::invalid_argument(problem);
-  const Vec3 offset = integrals.first / integrals.volume;  // COM relative to the reference
-  const Mat3 central = integrals.second - integrals.volume * offset * offset.transpose();
-  MeshMassProperties result;
-  result.volume = integrals.volume;
-  result.mass = density * integrals.volume;
-  result.com = integrals.reference + offset;
-  result.inertia = density * (central.trace() * Mat3::Identity() - central);
+  const MeshMassProperties result = mass_properties(integrals, density);
   if (!std::isfinite(result.mass) || !is_finite(result.com) || !is_finite(result.inertia))
     throw std::invalid_argument("the mass properties overflow (coordinates or density too large)");
   return result;

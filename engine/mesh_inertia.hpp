@@ -6,7 +6,16 @@
 //
 // The mesh must bound a solid: closed (every edge shared by exactly two triangles that run
 // along it in opposite directions), triangles counter-clockwise seen from outside, none
-// degenerate, positive enclosed volume. Vertices not used by any triangle are ignored.
+// degenerate, positive enclosed volume, spanning 1e-60 m to 1e60 m (the integrals are of
+// order span⁵). Vertices not used by any triangle are ignored.
+//
+// A mesh may consist of several pieces (separate closed surfaces). Each must be wound
+// counter-clockwise seen from outside the solid: an outer surface has positive signed volume,
+// the surface of a cavity, seen from inside the cavity, negative. An inside-out piece that
+// does not lie inside another piece is refused (it would be negative mass), and so is any mesh
+// whose tensor no solid can have. The integrals weight every point by how many pieces enclose
+// it, so where solid pieces overlap their densities add up (the overlap counts twice), as if
+// the pieces were separate bodies glued together; this is not checked.
 #pragma once
 
 #include <array>
@@ -29,8 +38,9 @@ struct MeshMassProperties {
 
 // Empty when the mesh bounds a solid, otherwise one sentence saying what is wrong and where,
 // with vertex and triangle numbers counting from 1: too few vertices or triangles, a
-// non-finite vertex, an index out of range, a degenerate triangle, an open edge, an edge shared
-// by more than two triangles, inconsistent winding, an inside-out mesh, zero volume.
+// non-finite vertex, an index out of range, a mesh too large or too small, a degenerate
+// triangle, an open edge, an edge shared by more than two triangles, inconsistent winding, an
+// inside-out mesh or piece, zero volume, a tensor no solid has.
 std::string mesh_problem(const std::vector<Vec3>& vertices,
                          const std::vector<MeshTriangle>& triangles);
 

@@ -419,7 +419,10 @@ const Entry functions[] = {
      "a list of vec3, triangles a list of {i, j, k} (1-based), counter-clockwise seen from\n"
      "outside. Exact polyhedral integrals (Mirtich 1996, Eberly 2002). Open or non-manifold\n"
      "meshes, inconsistent or inverted winding, degenerate triangles and zero volume are\n"
-     "refused with the edge or triangle at fault."},
+     "refused with the edge or triangle at fault; the mesh must span 1e-60 to 1e60 m.\n"
+     "Several separate closed surfaces are allowed: a surface wound inside-out (counter-\n"
+     "clockwise seen from inside) is a cavity and must lie inside another surface; solids\n"
+     "that overlap are summed (the overlap counts twice)."},
     {"check", check, "inertia.check", "inertia.check(I) -> true | false, message",
      "Whether I can be the inertia tensor of a rigid body: finite, symmetric, all principal\n"
      "moments > 0, and A + B >= C (planar bodies reach equality). The message names the rule\n"

@@ -379,5 +379,119 @@ TEST(MeshRefusal, BadDensity) {
   EXPECT_EQ(refusal(m, -HUGE_VAL), "density must be finite and > 0, got -inf");
 }
 
+// ---- several pieces -------------------------------------------------------------------------
+
+// `add`'s vertices and triangles appended to `mesh`, moved by `offset`, optionally inside-out.
+void append(Mesh& mesh, const Mesh& add, const Vec3& offset, bool inside_out = false) {
+  const int base = static_cast<int>(mesh.vertices.size());
+  for (const Vec3& v : add.vertices) mesh.vertices.push_back(v + offset);
+  for (MeshTriangle t : add.triangles) {
+    if (inside_out) std::swap(t[1], t[2]);
+    mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+}
+
+// A 2 × 2 × 2 box with a 1 × 1 × 1 cavity (its surface wound inside-out, counter-clockwise
+// seen from inside the cavity) is the big box minus the small one: mass ρ(8 − 1) and, both
+// centred at c, I = I_box(8ρ, 2, 2, 2) − I_box(ρ, 1, 1, 1) (the closed forms of a box).
+TEST(MeshPieces, ACavityIsSubtracted) {
+  const Vec3 c(3, -1, 2);
+  Mesh m;
+  append(m, box_mesh(Vec3(2, 2, 2)), c);
+  append(m, box_mesh(Vec3(1, 1, 1)), c, true);
+  const MeshMassProperties p = inertia_mesh(m.vertices, m.triangles, 5.0);
+  EXPECT_NEAR(p.volume, 7.0, 1e-13);
+  EXPECT_NEAR(p.mass, 35.0, 1e-12);
+  EXPECT_LT((p.com - c).norm(), 1e-13);
+  const Mat3 want = inertia_solid_box(40.0, Vec3(2, 2, 2)) - inertia_solid_box(5.0, Vec3(1, 1, 1));
+  EXPECT_LT(relative_error(p.inertia, want), 1e-14);
+}
+
+// Two separate boxes are the composite body: each box's closed form moved to the common COM by
+// the parallel axis theorem (here the COM is the midpoint and the offsets are ±(2, 0, 0)).
+TEST(MeshPieces, SeparateSolidsAddUp) {
+  Mesh m;
+  append(m, box_mesh(Vec3(1, 2, 3)), Vec3(-2, 0, 0));
+  append(m, box_mesh(Vec3(1, 2, 3)), Vec3(2, 0, 0));
+  const MeshMassProperties p = inertia_mesh(m.vertices, m.triangles);
+  EXPECT_NEAR(p.mass, 12.0, 1e-13);
+  EXPECT_LT(p.com.norm(), 1e-13);
+  const Mat3 one = inertia_solid_box(6.0, Vec3(1, 2, 3));
+  const Mat3 shift = Vec3(0, 6.0 * 4, 6.0 * 4).asDiagonal();  // m (d·d E − d⊗d), d = (2, 0, 0)
+  EXPECT_LT(relative_error(p.inertia, 2.0 * (one + shift)), 1e-14);
+}
+
+// As documented, overlapping solid pieces are summed: the exact integrals count the overlap
+// once per piece, so two copies of a box are a box of twice the density.
+TEST(MeshPieces, OverlappingSolidsAreSummed) {
+  Mesh m;
+  append(m, box_mesh(Vec3(1, 2, 3)), Vec3::Zero());
+  append(m, box_mesh(Vec3(1, 2, 3)), Vec3::Zero());
+  const MeshMassProperties p = inertia_mesh(m.vertices, m.triangles);
+  EXPECT_NEAR(p.volume, 12.0, 1e-13);
+  EXPECT_LT(relative_error(p.inertia, inertia_solid_box(12.0, Vec3(1, 2, 3))), 1e-14);
+}
+
+// The audit's case: two separate tetrahedra, the smaller inside-out. The total volume is
+// positive (1/6 − 1/48) but the small piece would be negative mass (before, the tensor came
+// out with Iyy = Izz < 0).
+TEST(MeshPieces, AnInsideOutPieceOutsideTheSolidIsRefused) {
+  Mesh m = unit_tetrahedron();
+  append(m, tetrahedron(Vec3::Zero(), Vec3(0.5, 0, 0), Vec3(0, 0.5, 0), Vec3(0, 0, 0.5)),
+         Vec3(10, 0, 0), true);
+  EXPECT_EQ(refusal(m),
+            "piece 2 of the mesh's 2 separate closed surfaces (4 triangles, the first is "
+            "triangle 5) is inside-out: its signed volume -0.02083333333 m³ is negative, and it "
+            "does not lie inside another piece as a cavity would; reverse the vertex order of "
+            "its triangles");
+  // Flipping the big one instead names it, though the total volume is then negative.
+  Mesh big_flipped;
+  append(big_flipped, unit_tetrahedron(), Vec3::Zero(), true);
+  append(big_flipped, tetrahedron(Vec3::Zero(), Vec3(0.5, 0, 0), Vec3(0, 0.5, 0), Vec3(0, 0, 0.5)),
+         Vec3(10, 0, 0));
+  EXPECT_NE(refusal(big_flipped).find("piece 1 of the mesh's 2"), std::string::npos)
+      << refusal(big_flipped);
+}
+
+// A cavity that pokes out of its solid passes the piece test (its first corner is inside the
+// cube) but makes a tensor no solid has: the validator of engine/inertia.hpp refuses it.
+TEST(MeshPieces, ACavityPokingOutOfTheSolidIsRefusedByTheTensorCheck) {
+  Mesh m;
+  append(m, box_mesh(Vec3(1, 1, 1)), Vec3(0.5, 0.5, 0.5));         // the cube [0, 1]³
+  append(m, box_mesh(Vec3(9.5, 0.2, 0.2)), Vec3(5.25, 0.5, 0.5), true);  // x from 0.5 to 10
+  const std::string message = refusal(m);
+  EXPECT_EQ(message.rfind("the mesh's pieces give an inertia tensor no solid has (principal "
+                          "moments ", 0), 0u) << message;
+  EXPECT_NE(message.find("an inside-out piece (a cavity) must lie wholly inside a solid piece"),
+            std::string::npos) << message;
+}
+
+// ---- scale ---------------------------------------------------------------------------------
+
+// The box's closed form holds from 1e-50 m to 1e50 m (the integrals are of order size⁵).
+TEST(MeshScale, BoxesFromTinyToHugeMatchTheClosedForm) {
+  for (double s : {1e-50, 1e-20, 1e20, 1e50}) {
+    const Vec3 size = s * Vec3(1, 2, 3);
+    const Mesh m = box_mesh(size);
+    const MeshMassProperties p = inertia_mesh(m.vertices, m.triangles);
+    EXPECT_NEAR(p.volume / (s * s * s), 6.0, 1e-13) << s;
+    const double s5 = s * s * s * s * s;  // compared at unit scale (their squares would not fit)
+    EXPECT_LT(relative_error(p.inertia / s5, inertia_solid_box(p.mass, size) / s5), 1e-13) << s;
+  }
+}
+
+TEST(MeshScale, TooLargeOrTooSmallSaysSo) {
+  for (double s : {1e200, 1e-200}) {
+    Mesh m = unit_tetrahedron();
+    for (Vec3& v : m.vertices) v *= s;
+    const std::string message = refusal(m);
+    EXPECT_EQ(message.rfind(s > 1 ? "the mesh is too large to integrate: it spans 1e+200 m"
+                                  : "the mesh is too small to integrate: it spans 1e-200 m",
+                            0),
+              0u)
+        << message;
+  }
+}
+
 }  // namespace
 }  // namespace rigidlab

@@ -260,6 +260,36 @@ T.case("mesh refusals say what is wrong", function()
   repeated[2] = {1, 1, 4}
   T.fails(function() inertia.mesh(vertices, repeated) end,
     "(triangle 2 (1, 1, 4) is degenerate: it repeats a vertex)", "repeated vertex")
+  -- Two separate tetrahedra, the smaller inside-out: not a cavity, so negative mass.
+  local tet = {{1, 3, 2}, {1, 2, 4}, {1, 4, 3}, {2, 3, 4}}
+  local two = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1),
+               vec3(10, 0, 0), vec3(10.5, 0, 0), vec3(10, 0.5, 0), vec3(10, 0, 0.5)}
+  local pieces = {table.unpack(tet)}
+  for _, t in ipairs(tet) do pieces[#pieces + 1] = {t[1] + 4, t[3] + 4, t[2] + 4} end
+  T.fails(function() inertia.mesh(two, pieces) end,
+    "bad argument #2 to 'inertia.mesh' (piece 2 of the mesh's 2 separate closed surfaces (4 "
+    .. "triangles, the first is triangle 5) is inside-out: its signed volume -0.02083333333 m³ "
+    .. "is negative, and it does not lie inside another piece as a cavity would; reverse the "
+    .. "vertex order of its triangles)", "inside-out piece")
+  local huge, tiny = {}, {}
+  for i = 1, 4 do huge[i], tiny[i] = two[i] * 1e200, two[i] * 1e-200 end
+  T.fails(function() inertia.mesh(huge, tet) end,
+    "(the mesh is too large to integrate: it spans 1e+200 m, and its second moments (of order "
+    .. "span⁵) would overflow; express it in larger units (it must span at most 1e+60 m))", "huge")
+  T.fails(function() inertia.mesh(tiny, tet) end,
+    "(the mesh is too small to integrate: it spans 1e-200 m", "tiny")
+end)
+
+T.case("mesh: a cavity (an inside-out surface inside the solid) is subtracted", function()
+  -- A 2 m cube with a 1 m cubic hole: mass 8 − 1, tensor of the big box minus the small one.
+  local vertices, triangles = box_mesh(2, 2, 2, vec3(1, 2, 3))
+  local inner_vertices, inner_triangles = box_mesh(1, 1, 1, vec3(1, 2, 3))
+  for _, v in ipairs(inner_vertices) do vertices[#vertices + 1] = v end
+  for _, t in ipairs(inner_triangles) do triangles[#triangles + 1] = {t[1] + 8, t[3] + 8, t[2] + 8} end
+  local mass, com, I = inertia.mesh(vertices, triangles)
+  T.near(mass, 7, 1e-13, "mass")
+  T.near(com, vec3(1, 2, 3), 1e-13, "com")
+  T.near(I, inertia.solid_box(8, 2, 2, 2) - inertia.solid_box(1, 1, 1, 1), 1e-13, "tensor")
 end)
 
 T.case("every function is documented for help()", function()
