@@ -18,10 +18,17 @@ Mat3 infinite_inertia() {
 
 }  // namespace
 
+std::string mass_problem(double mass) {
+  if (!std::isfinite(mass)) return "must be finite, got " + format_number(mass);
+  if (!(mass > 0.0)) return "must be > 0, got " + format_number(mass);
+  if (!std::isfinite(1.0 / mass))
+    return "is too small: 1/mass overflows, got " + format_number(mass);
+  return {};
+}
+
 Body make_body(double mass, const Mat3& inertia) {
-  if (!std::isfinite(mass))
-    throw std::invalid_argument("mass must be finite, got " + format_number(mass));
-  if (!(mass > 0.0)) throw std::invalid_argument("mass must be > 0, got " + format_number(mass));
+  const std::string mass_rule = mass_problem(mass);
+  if (!mass_rule.empty()) throw std::invalid_argument("mass " + mass_rule);
   if (!is_finite(inertia)) throw std::invalid_argument("inertia must be finite");
   const std::string problem = inertia_tensor_problem(inertia);
   if (!problem.empty()) throw std::invalid_argument("inertia is not a valid tensor: " + problem);
@@ -31,8 +38,16 @@ Body make_body(double mass, const Mat3& inertia) {
   // Symmetrise: the validator admits an asymmetry of 1e-9 relative, and an exactly symmetric
   // tensor keeps R I Rᵀ exactly symmetric, so the angular momentum I ω is frame-consistent.
   b.inertia = 0.5 * (inertia + inertia.transpose());
-  b.inverse_inertia = b.inertia.inverse();
+  // I⁻¹ = (I/s)⁻¹/s with s the power of two nearest the largest entry (so the scaling is
+  // exact): the cofactor formula's determinant, a product of three moments, would underflow for
+  // moments near 1e-110 (or overflow near 1e110) although the inverse itself is representable;
+  // the validator ensured that 1/(smallest moment) is finite.
+  const int exponent = std::ilogb(b.inertia.cwiseAbs().maxCoeff());
+  const auto unscale = [exponent](double x) { return std::scalbn(x, -exponent); };
+  b.inverse_inertia = Mat3(b.inertia.unaryExpr(unscale)).inverse().unaryExpr(unscale);
   b.inverse_inertia = 0.5 * (b.inverse_inertia + b.inverse_inertia.transpose());
+  if (!is_finite(b.inverse_inertia))
+    throw std::invalid_argument("inertia is too small: its inverse overflows");
   return b;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
 
 #include "engine/math.hpp"
 #include "engine/plane.hpp"
@@ -43,8 +44,14 @@ struct Body {
   double friction = default_friction;        // Coulomb μ >= 0
 };
 
-// A dynamic body of `mass` (finite, > 0) and body-frame `inertia` (symmetric positive definite,
-// satisfying the triangle inequalities). Throws std::invalid_argument naming the rule broken.
+// Why `mass` (kg) cannot be a dynamic body's mass, or empty: it must be finite, > 0, and not
+// so small (below about 5.6e-309 kg, a subnormal) that 1/mass overflows. The message names no
+// field ("must be > 0, got -1", "is too small: 1/mass overflows, got 1e-320"); callers prefix
+// "mass " or "field 'mass' ".
+std::string mass_problem(double mass);
+// A dynamic body of `mass` (mass_problem empty) and body-frame `inertia` (inertia_tensor_problem
+// with InertiaRules::body empty: symmetric positive definite with a finite inverse, satisfying
+// the triangle inequalities). Throws std::invalid_argument naming the rule broken.
 // Position zero, orientation identity, at rest.
 Body make_body(double mass, const Mat3& inertia);
 // An immovable body: mass +inf, inverse mass and inverse inertia 0 (impulses and forces do

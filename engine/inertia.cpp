@@ -195,6 +195,9 @@ std::string inertia_tensor_problem(const Mat3& inertia, InertiaRules rules) {
     return "the tensor is not symmetric (entries (i, j) and (j, i) differ by up to " +
            number(asym, 3) + ")";
   const Vec3 moments = principal_inertia(inertia).values;  // ascending
+  if (!is_finite(moments))
+    return "the tensor is too large: its principal moments overflow (largest entry " +
+           number(largest_entry) + ")";
   const double a = moments.x(), b = moments.y(), c = moments.z();
   const std::string listed = number(a) + ", " + number(b) + ", " + number(c);
   const double zero_level = zero_moment_tolerance * std::max(c, 0.0);
@@ -205,6 +208,9 @@ std::string inertia_tensor_problem(const Mat3& inertia, InertiaRules rules) {
     return "principal moments " + listed + ": the smallest is zero to rounding, less than " +
            number(zero_moment_tolerance, 3) + " of the largest (a particle or an infinitely "
            "thin rod); a body needs three positive principal moments";
+  if (rules == InertiaRules::body && !std::isfinite(1.0 / a))
+    return "principal moments " + listed + " are too small for a body: the inverse tensor "
+           "overflows (1/" + number(a) + " = " + number(1.0 / a) + ")";
   if (a < -zero_level)
     return "principal moments " + listed + " are not all >= 0 (the smallest is " + number(a) +
            ")";

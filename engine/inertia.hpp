@@ -92,8 +92,9 @@ MassProperties composite_inertia(const std::vector<MassProperties>& parts);
 // What a physical inertia tensor must satisfy. Every real body (about any point) has a
 // symmetric, positive semidefinite tensor whose principal moments A, B, C obey the triangle
 // inequality A + B >= C (each moment is a sum of two of the three second moments ∫x², ∫y², ∫z²).
-// `body` additionally requires every principal moment > 0, as a body must have an invertible
-// tensor; `idealized` also admits the zero moments of a particle or an infinitely thin rod.
+// `body` additionally requires every principal moment > 0 with a finite inverse, as a body must
+// have an invertible tensor; `idealized` also admits the zero moments of a particle or an
+// infinitely thin rod. Entries so large that the principal moments overflow are refused too.
 enum class InertiaRules { body, idealized };
 
 // Empty when I could be an inertia tensor, otherwise one sentence naming the rule it breaks and

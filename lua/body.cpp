@@ -77,8 +77,8 @@ bool read_mass(lua_State* L, double& mass) {
   if (is_static)
     arg_error(L, 1, "field 'mass' must be math.huge or absent for a static body, got %s",
               format_number(mass).c_str());
-  if (!(mass > 0.0))
-    arg_error(L, 1, "field 'mass' must be > 0, got %s", format_number(mass).c_str());
+  const std::string problem = mass_problem(mass);
+  if (!problem.empty()) arg_error(L, 1, "field 'mass' %s", problem.c_str());
   return false;
 }
 
@@ -157,6 +157,26 @@ int body_call(lua_State* L) {
   return 1;
 }
 
+// Refuses the tensor of a dynamic body.sphere / body.box, naming the fields, when it overflows
+// (a radius of 1e200 m) or is no body's tensor (too small to invert).
+void check_shape_inertia(lua_State* L, ShapeKind kind, double mass, double radius,
+                         const Vec3& size) {
+  const bool sphere = kind == ShapeKind::sphere;
+  const Mat3 tensor = sphere ? inertia_solid_sphere(mass, radius) : inertia_solid_box(mass, size);
+  const std::string problem = inertia_tensor_problem(tensor);
+  if (problem.empty()) return;
+  const std::string fields =
+      "fields 'mass' (" + format_number(mass) + ") and " +
+      (sphere ? "'radius' (" + format_number(radius) + ")"
+              : "'size' (" + format_number(size.x()) + ", " + format_number(size.y()) + ", " +
+                    format_number(size.z()) + ")");
+  const char* formula = sphere ? "(2/5) m r²" : "m (h² + d²)/12, ...";
+  if (!is_finite(tensor))
+    arg_error(L, 1, "%s are too large: the inertia %s overflows", fields.c_str(), formula);
+  arg_error(L, 1, "%s give an inertia %s that no body can have: %s", fields.c_str(), formula,
+            problem.c_str());
+}
+
 // body.sphere{...} and body.box{...}: the shape's own field, then mass and state.
 int shaped_body(lua_State* L, ShapeKind kind) {
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
@@ -187,6 +207,7 @@ int shaped_body(lua_State* L, ShapeKind kind) {
     b.shape.radius = radius;
     b.shape.half_extents = 0.5 * size;
   } else {
+    check_shape_inertia(L, kind, mass, radius, size);
     b = make_or_raise(L, [&] {
       return kind == ShapeKind::sphere ? make_sphere_body(mass, radius) : make_box_body(mass, size);
     });

@@ -40,6 +40,35 @@ TEST(MakeBody, RefusesBadMassAndInertia) {
   EXPECT_NE(error_of(1, -Mat3::Identity()), "");
 }
 
+// A subnormal mass or tensor has an inverse that overflows (1/1e-320 = inf); entries near
+// DBL_MAX have principal moments that overflow. Both are refused, saying so.
+TEST(MakeBody, RefusesMassesAndTensorsWhoseInverseOrMomentsOverflow) {
+  EXPECT_EQ(error_of(1e-320, Mat3::Identity()),
+            "mass is too small: 1/mass overflows, got 9.9998886718268e-321");
+  EXPECT_EQ(mass_problem(1e-320), "is too small: 1/mass overflows, got 9.9998886718268e-321");
+  EXPECT_EQ(mass_problem(1e-300), "");
+  const std::string tiny = error_of(1, 1e-320 * Mat3::Identity());
+  EXPECT_NE(tiny.find("are too small for a body: the inverse tensor overflows (1/"),
+            std::string::npos) << tiny;
+  EXPECT_EQ(error_of(1, 1e308 * Mat3::Identity()),
+            "inertia is not a valid tensor: the tensor is too large: its principal moments "
+            "overflow (largest entry 1e+308)");
+}
+
+// The inverse of diag(a, b, c) is diag(1/a, 1/b, 1/c) also where the determinant abc would
+// underflow (1e-360) or overflow (1e360); and I I⁻¹ = E for a turned tensor at those scales.
+TEST(MakeBody, InverseInertiaAtTinyAndHugeScales) {
+  for (double s : {1e-120, 1e120}) {
+    const Body b = make_body(1.0, s * Vec3(2, 3, 4).asDiagonal());
+    const Mat3 want = (Vec3(1.0 / 2, 1.0 / 3, 1.0 / 4) / s).asDiagonal();
+    EXPECT_LT(((b.inverse_inertia - want) * s).norm(), 1e-15) << s;
+    const Mat3 turned = rotate_inertia(Mat3(s * Vec3(2, 3, 4).asDiagonal()),
+                                       quat_from_axis_angle(Vec3(1, 2, 3), 0.7));
+    const Body c = make_body(1.0, turned);
+    EXPECT_LT((c.inertia * c.inverse_inertia - Mat3::Identity()).norm(), 1e-14) << s;
+  }
+}
+
 TEST(MakeBody, StoresInverses) {
   const Body b = make_body(4.0, Vec3(1, 2, 3).asDiagonal());
   EXPECT_EQ(b.inverse_mass, 0.25);

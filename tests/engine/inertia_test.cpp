@@ -410,6 +410,19 @@ TEST(InertiaTensorProblem, RefusesEachImpossibleTensor) {
   EXPECT_NE(inertia_tensor_problem(products).find("not all > 0"), std::string::npos);
 }
 
+// Subnormal moments have no finite inverse: not a body's tensor, though a particle's may be that
+// small. Entries near DBL_MAX make the principal moments overflow: refused, saying so.
+TEST(InertiaTensorProblem, TooSmallToInvertOrTooLargeToAnalyse) {
+  const Mat3 tiny = 1e-320 * Mat3::Identity();
+  EXPECT_EQ(inertia_tensor_problem(tiny),
+            "principal moments 9.999888672e-321, 9.999888672e-321, 9.999888672e-321 are too "
+            "small for a body: the inverse tensor overflows (1/9.999888672e-321 = inf)");
+  EXPECT_EQ(inertia_tensor_problem(tiny, InertiaRules::idealized), "");
+  EXPECT_EQ(inertia_tensor_problem(1e-300 * Mat3::Identity()), "");
+  EXPECT_EQ(inertia_tensor_problem(1e308 * Mat3::Identity(), InertiaRules::idealized),
+            "the tensor is too large: its principal moments overflow (largest entry 1e+308)");
+}
+
 TEST(InertiaTensorProblem, RodsAndPointsAreIdealizedNotBodies) {
   const Mat3 rod = Vec3(0, 1, 1).asDiagonal();
   EXPECT_NE(inertia_tensor_problem(rod).find("not all > 0"), std::string::npos);

@@ -140,6 +140,30 @@ T.case("constructor errors", function()
     "bad argument #1 to 'body' (field 'inertia' must be absent for a static body (its inertia is infinite))")
   T.fails(function() return body{static = true, velocity = vec3(1, 0, 0)} end,
     "bad argument #1 to 'body' (a static body cannot move: velocity and angular_velocity must be zero)")
+  -- Subnormal masses and moments have inverses that overflow; huge entries overflow the moments.
+  T.fails(function() return body{mass = 1e-320, inertia = I} end,
+    "bad argument #1 to 'body' (field 'mass' is too small: 1/mass overflows, got 9.9998886718268e-321)")
+  T.fails(function() return body{mass = 1, inertia = mat3.diag(1e-320, 1e-320, 1e-320)} end,
+    "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
+    .. "definite, A + B >= C): principal moments 9.999888672e-321, 9.999888672e-321, "
+    .. "9.999888672e-321 are too small for a body: the inverse tensor overflows "
+    .. "(1/9.999888672e-321 = inf))")
+  T.fails(function() return body{mass = 1, inertia = mat3.diag(1e308, 1e308, 1e308)} end,
+    "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
+    .. "definite, A + B >= C): the tensor is too large: its principal moments overflow (largest "
+    .. "entry 1e+308))")
+  T.fails(function() return body.sphere{mass = 1, radius = 1e200} end,
+    "bad argument #1 to 'body.sphere' (fields 'mass' (1) and 'radius' (1e+200) are too large: "
+    .. "the inertia (2/5) m r² overflows)")
+  T.fails(function() return body.box{mass = 1e300, size = vec3(1, 1e5, 1)} end,
+    "bad argument #1 to 'body.box' (fields 'mass' (1e+300) and 'size' (1, 100000, 1) are too "
+    .. "large: the inertia m (h² + d²)/12, ... overflows)")
+  T.fails(function() return body.sphere{mass = 1e-300, radius = 1e-10} end,
+    "bad argument #1 to 'body.sphere' (fields 'mass' (1e-300) and 'radius' (1e-10) give an inertia "
+    .. "(2/5) m r² that no body can have: principal moments 4.001931731e-321")
+  local tiny = body{mass = 1e-300, inertia = mat3.diag(1e-300, 2e-300, 2e-300)}
+  T.near(tiny.inv_mass * 1e-300, 1, 1e-15, "1/m of a tiny but normal mass")
+  T.near(tiny.inv_inertia * 1e-300, mat3.diag(1, 0.5, 0.5), 1e-15, "its inverse tensor")
   T.fails(function() return body.sphere{mass = 1, radius = -1} end,
     "bad argument #1 to 'body.sphere' (field 'radius' must be > 0, got -1)")
   T.fails(function() return body.sphere{mass = 1} end,
