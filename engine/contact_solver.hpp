@@ -25,14 +25,35 @@
 //   new tangents. A point whose feature is new continues the nearest point of the previous
 //   step within match_distance (the position matching of Bullet's persistent manifolds).
 // - Speculative contacts (Catto, "Continuous Collision", GDC 2013; Box2D v3): points with a gap
-//   s > 0 up to speculative_distance plus what the bodies can travel in the step are
-//   constraints too, v_n ≥ −s/Δt: the bodies may close the gap in this step, not more. A
-//   falling body lands on the surface instead of sinking into it, and a resting one stays.
-// - Restitution (Box2D v3's b2ApplyRestitution): after the sweeps, a point that took an
-//   impulse and whose approach speed before the solve, −v_n⁻, exceeded restitution_threshold
-//   is solved again for v_n = −e v_n⁻ (003_* "Collision Response": the coefficient of
-//   restitution relates the normal velocities before and after). Below the threshold e = 0:
-//   a resting body neither bounces forever nor jitters.
+//   s > 0 are constraints too, v_n ≥ −s/Δt: the bodies may close the gap in this step, not
+//   more. A falling body lands on the surface instead of sinking into it, and a resting one
+//   stays. Which gaps count: up to speculative_distance always (Box2D v3: resting and stacked
+//   bodies keep their contacts); beyond it, out to what the bodies can travel in the step, only
+//   when they really meet in the step: the time of impact τ is found by conservative
+//   advancement (engine/time_of_impact.hpp) and the contact is taken at the poses of τ (its
+//   normal, points and lever arms where the shapes touch), with s the distance its points
+//   close from the start of the step to τ. A body flying past a corner gets no contact (no
+//   "ghost" hit) and a fast ball hitting a floor sideways gets the lever arm R of the real
+//   contact point, not that of a point in the gap.
+// - Restitution (the restitution pass of Box2D v3's b2ApplyRestitution, over all contacts):
+//   after the sweeps, every point is solved again along its normal, with the target
+//   v_n ≥ −s/Δt as before except at bouncing points, v_n = −e w + a_n Δt/2. w is the
+//   normal velocity at the instant of impact, a_n the relative normal acceleration of the
+//   contact point under the applied forces and gravity, and a point bounces when it touches at
+//   the start of the step, e > 0 and −w > restitution_threshold. Because the non-bouncing
+//   points are solved in the same pass, a ball bouncing on a box that rests on the floor
+//   pushes the box against the floor instead of into it, and rebounds as from the floor.
+//   Why w and a_n: the positions of every integrator here follow a parabola exactly (x' = x +
+//   Δt u, with u the velocity the impulses act on, see below), on which the velocity at the
+//   start of the step is w₀ = u_n − a_n Δt/2 and at the end u_n + a_n Δt/2. Reflecting that
+//   parabola at the surface (w → −e w) keeps the "shadow" energy ½w² − a_n x of the discrete
+//   motion, so the rebound apex is e² of the drop height at 60 Hz as at 1 kHz; using the
+//   velocity with this step's gravity already in it (u_n) adds e g Δt per bounce, and a ball
+//   with e ≥ 0.85 then bounces forever at 60 Hz on the limit cycle v* = e g Δt/(1 − e). A
+//   speculative point that lands in the step (its gap closes, with impact velocity
+//   w = −√(w₀² − 2 a_n s), the parabola's at the gap) is only brought to the surface, and
+//   bounces in the next step, when it touches, with the w it landed with (ContactInfo::impact):
+//   a bounce from inside the gap would start above the surface.
 // - Position correction: non-linear Gauss-Seidel (Box2D v2.4 b2ContactSolver::
 //   SolvePositionConstraints) on the separation recomputed from each point's anchors,
 //   C = clamp(β (s + slop), −max_correction, 0), moving the bodies by −C/K along n. Only
@@ -121,6 +142,9 @@ struct ContactInfo {
   Vec3 friction_impulse = Vec3::Zero();  // N s, tangential, on b (a the opposite)
   double restitution = 0.0;              // the mixed material of the pair (engine/plane.hpp)
   double friction = 0.0;
+  double impact = 0.0;  // m/s, < 0 when the point landed in the step (a speculative contact
+                        // whose gap closed): the normal velocity it met the surface with,
+                        // bounced on in the next step
 };
 
 // A point that touched (depth ≥ 0) or pushed (normal impulse > 0) in the step: the contacts
@@ -156,6 +180,7 @@ class ContactSolver {
   struct SolverBody {
     Vec3 velocity, angular_velocity;              // m/s, rad/s, world
     Vec3 start_velocity, start_angular_velocity;  // before the solve
+    Vec3 acceleration, angular_acceleration;      // free: F/m + g, I⁻¹τ (m/s², rad/s²)
     Mat3 inverse_inertia;                         // world, 1/(kg m²)
     double inverse_mass;                          // 1/kg
     std::size_t index;                            // in the world
@@ -171,9 +196,14 @@ class ContactSolver {
     double radius_a, radius_b;        // m, of a sphere (its witness is recomputed), else 0
     double separation;                // m, −depth
     double normal_mass, tangent_mass1, tangent_mass2;  // kg: 1/(J W Jᵀ)
-    double normal_impulse, tangent_impulse1, tangent_impulse2, max_normal_impulse;  // N s
-    double bias;      // m/s: gap/Δt of a speculative point, else 0
-    double approach;  // m/s: v_n before the solve
+    double normal_impulse, tangent_impulse1, tangent_impulse2;  // N s
+    double bias;          // m/s: gap/Δt of a speculative point, else 0
+    double approach;      // m/s: v_n before the solve (the velocity the positions move with)
+    double acceleration;  // m/s²: a_n, relative normal acceleration of the point, free
+    double impact;        // m/s: w, normal velocity at the impact in this step, else 0
+    double target;        // m/s: v_n after the restitution pass at a bouncing point
+    bool bounces;         // touches, and bounces in this step (see prepare_restitution)
+    bool landed;          // pushed after the sweeps while its impact lies in the step
     double restitution, friction;
   };
   // A shape in the broad phase: its extent along x (sweep and prune).
@@ -190,12 +220,24 @@ class ContactSolver {
                      ContactVelocities velocities);
   void find_contacts(std::vector<Body>& bodies, const std::vector<Plane>& planes,
                      const Vec3& gravity, double dt, ContactVelocities velocities);
+  // One pair's contact: the manifold at the start poses, or at the time of impact, or none.
+  void add_pair(const std::vector<Body>& bodies, const Manifold& m, std::size_t a, std::size_t b,
+                std::size_t plane, const Plane* plane_material, double dt, std::uint32_t slot_a,
+                std::uint32_t slot_b);
+  // The constraints of manifold m, found at time toi of the step with the bodies at
+  // pose_a, pose_b (pose_a unused for a plane).
   void add_manifold(const std::vector<Body>& bodies, const Manifold& m, std::size_t a,
                     std::size_t b, std::size_t plane, const Plane* plane_material, double dt,
-                    std::uint32_t slot_a, std::uint32_t slot_b);
+                    std::uint32_t slot_a, std::uint32_t slot_b, double toi, const Pose& pose_a,
+                    const Pose& pose_b);
+  double touch_tolerance() const;
   const ContactInfo* previous_point(const Constraint& c) const;
   void warm_start(Constraint& c, double dt);
+  void prepare_restitution(Constraint& c, const ContactInfo* previous, double dt) const;
   void seed_manifold(std::size_t begin, std::size_t end, bool restitution);
+  double target_of(const Constraint& c, bool restitution) const {
+    return restitution && c.bounces ? c.target : -c.bias;
+  }
   // Calls f(begin, end) for the constraint range of each manifold.
   template <class F>
   void for_each_manifold(F&& f) {
@@ -204,6 +246,7 @@ class ContactSolver {
         i + 1 < manifold_begin_.size() ? manifold_begin_[i + 1] : constraints_.size());
   }
   void solve_point(Constraint& c);
+  void apply_impulse(Constraint& c, const Vec3& impulse);
   void apply_restitution();
   void store_results(double dt);
   std::size_t write_back(std::vector<Body>& bodies);

@@ -261,36 +261,59 @@ Manifold collide_box_sphere(const Pose& box, const Vec3& half, const Vec3& cente
   return m;
 }
 
-Manifold collide_box_box(const Pose& a, const Vec3& ha, const Pose& b, const Vec3& hb,
-                         double margin) {
-  constexpr double minus_infinity = -std::numeric_limits<double>::infinity();
-  const Vec3 d = b.position - a.position;
-  // The 15 candidate axes, each oriented from a to b; the separation along one is the
-  // distance between the projections of the boxes (negative: overlap).
-  double best[3] = {minus_infinity, minus_infinity, minus_infinity};  // face a, face b, edges
+namespace {
+
+// The separating-axis test of two boxes over the 15 candidate axes (faces of a, faces of b,
+// edge pairs), each oriented from a to b; the separation along an axis is the distance between
+// the projections of the boxes (negative: overlap). Keeps the best axis of each kind. Stops
+// early (separated = true) as soon as an axis separates by more than `margin`.
+struct SeparatingAxes {
+  double best[3];  // face of a, face of b, edge pair; m
   int index[3][2] = {{0, 0}, {0, 0}, {0, 0}};
   Vec3 normal[3];
+  bool separated = false;
+};
+
+SeparatingAxes separating_axes(const Pose& a, const Vec3& ha, const Pose& b, const Vec3& hb,
+                               double margin) {
+  constexpr double minus_infinity = -std::numeric_limits<double>::infinity();
+  SeparatingAxes r;
+  r.best[0] = r.best[1] = r.best[2] = minus_infinity;
+  const Vec3 d = b.position - a.position;
   auto consider = [&](int kind, int i, int j, Vec3 n) {
     double distance = n.dot(d);
     if (distance < 0.0) n = -n, distance = -distance;
     const double separation = distance - radius_along(a, ha, n) - radius_along(b, hb, n);
-    if (separation > best[kind]) {
-      best[kind] = separation;
-      index[kind][0] = i, index[kind][1] = j;
-      normal[kind] = n;
+    if (separation > r.best[kind]) {
+      r.best[kind] = separation;
+      r.index[kind][0] = i, r.index[kind][1] = j;
+      r.normal[kind] = n;
     }
-    return separation <= margin;
+    r.separated = separation > margin;
+    return !r.separated;
   };
   for (int i = 0; i < 3; ++i)
-    if (!consider(0, i, 0, a.rotation.col(i))) return {};
+    if (!consider(0, i, 0, a.rotation.col(i))) return r;
   for (int j = 0; j < 3; ++j)
-    if (!consider(1, j, 0, b.rotation.col(j))) return {};
+    if (!consider(1, j, 0, b.rotation.col(j))) return r;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const Vec3 axis = a.rotation.col(i).cross(b.rotation.col(j));
       const double length = axis.norm();  // sin of the angle between the edges
-      if (length > 1e-6 && !consider(2, i, j, axis / length)) return {};
+      if (length > 1e-6 && !consider(2, i, j, axis / length)) return r;
     }
+  return r;
+}
+
+}  // namespace
+
+Manifold collide_box_box(const Pose& a, const Vec3& ha, const Pose& b, const Vec3& hb,
+                         double margin) {
+  const SeparatingAxes axes = separating_axes(a, ha, b, hb, margin);
+  if (axes.separated) return {};
+  const double* best = axes.best;
+  const auto& index = axes.index;
+  const Vec3* normal = axes.normal;
   // Prefer a's faces, then b's, then edges, unless the next is clearly better: with nearly
   // equal separations (a box resting on another) the choice then stays the same from step
   // to step, and so do the feature ids warm starting relies on.
@@ -317,6 +340,24 @@ Manifold collide_shapes(const Shape& a, const Pose& pose_a, const Shape& b, cons
   if (sphere_b)
     return collide_box_sphere(pose_a, a.half_extents, pose_b.position, b.radius, margin);
   return collide_box_box(pose_a, a.half_extents, pose_b, b.half_extents, margin);
+}
+
+double separation(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  if (a.kind == ShapeKind::box && b.kind == ShapeKind::box) {
+    const SeparatingAxes axes =
+        separating_axes(pose_a, a.half_extents, pose_b, b.half_extents, infinity);
+    return std::max({axes.best[0], axes.best[1], axes.best[2]});
+  }
+  // With a sphere the closest points are exact (engine/contacts.hpp): the gap of the point.
+  const Manifold m = collide_shapes(a, pose_a, b, pose_b, infinity);
+  return m.count > 0 ? -m.points[0].depth : infinity;
+}
+
+double separation(const Shape& shape, const Pose& pose, const Plane& plane) {
+  const Manifold m =
+      collide_shape_plane(shape, pose, plane, std::numeric_limits<double>::infinity());
+  return m.count > 0 ? -m.points[0].depth : std::numeric_limits<double>::infinity();
 }
 
 Manifold collide_shape_plane(const Shape& shape, const Pose& pose, const Plane& plane,

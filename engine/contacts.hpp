@@ -82,4 +82,12 @@ Manifold collide_shapes(const Shape& a, const Pose& pose_a, const Shape& b, cons
 Manifold collide_shape_plane(const Shape& shape, const Pose& pose, const Plane& plane,
                              double margin = 0.0);
 
+// A lower bound on the distance between two shapes (m; ≤ 0 when they touch or overlap; +inf
+// when a shape is none): exact when a sphere or a plane is involved, and for two boxes the
+// largest separation along the 15 axes of the separating-axis test (the projections onto any
+// axis are never farther apart than the shapes). What conservative advancement
+// (engine/time_of_impact.hpp) needs: it never steps past a contact.
+double separation(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b);
+double separation(const Shape& shape, const Pose& pose, const Plane& plane);
+
 }  // namespace rigidlab

@@ -206,9 +206,11 @@ void write_state(Body& b, const BodyState& base, double h, const Vec3& dx, const
 
 // One stage of the staged RK4: the slope at the state the bodies hold is added to the
 // weighted sum, then the next stage's state base + c·dt·slope is written into the bodies, or
-// after the fourth stage the final state base + dt/6 · sum.
-void rk4_stage(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws, int stage,
-               double dt) {
+// after the fourth stage the final state base + dt/6 · sum. Returns the index of the first body
+// whose written state is not finite, or all_finite.
+std::size_t rk4_stage(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws,
+                      int stage, double dt) {
+  double probe = 0.0;  // becomes NaN when any written state component is NaN or infinite
   static constexpr double weights[] = {1.0, 2.0, 2.0, 1.0};
   static constexpr double next_offsets[] = {0.5, 0.5, 1.0};
   const double weight = weights[stage];
@@ -231,7 +233,9 @@ void rk4_stage(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws,
       b.force = Vec3::Zero();
       b.torque = Vec3::Zero();
     }
+    probe += 0.0 * state_sum(b);
   }
+  return probe == 0.0 ? all_finite : first_non_finite(bodies);
 }
 
 }  // namespace
@@ -291,11 +295,12 @@ std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, d
   static constexpr double stage_times[] = {0.0, 0.5, 0.5, 1.0};
   for (int stage = 0; stage < 4; ++stage) {
     evaluate_forces(t + stage_times[stage] * dt);
-    rk4_stage(bodies, gravity, ws, stage, dt);
+    // A stage state that is not finite ends the step before the force elements (user
+    // callbacks among them) can see it: they would read, and could store, infinities.
+    first_bad = rk4_stage(bodies, gravity, ws, stage, dt);
+    if (first_bad != all_finite) return first_bad;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (!state_is_finite(bodies[i]) && first_bad == all_finite) first_bad = i;
-  return first_bad;
+  return all_finite;
 }
 
 }  // namespace rigidlab

@@ -115,7 +115,9 @@ struct Rk4Workspace {
 //
 // `evaluate_forces(t)` is called at every stage, after the stage state has been written into
 // the bodies (orientation normalised) and their force and torque reset to what was applied
-// before the step; it adds the state-dependent forces (springs, drag, user callbacks). When it
+// before the step; it adds the state-dependent forces (springs, drag, user callbacks). It only
+// ever sees finite states: when a stage state is not finite the step stops there and returns
+// that body's index (the bodies then hold the stage state; the caller restores them). When it
 // is empty the forces are constant over the step and every body is integrated on its own in
 // one pass. Exceptions from evaluate_forces propagate; the bodies then hold a stage state and
 // the caller restores them.

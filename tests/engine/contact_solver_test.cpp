@@ -54,11 +54,18 @@ TEST(ContactSolver, SpeculativeContactLetsTheGapCloseAndNoMore) {
   ASSERT_EQ(solver.contacts().size(), 1u);
   EXPECT_NEAR(solver.contacts()[0].depth, -0.05, 1e-15);
   EXPECT_TRUE(touched(solver.contacts()[0]));  // it pushed
-  // At 4 m/s it covers 0.04 m: the point is looked at (within 0.02 m + 0.04 m), but the gap
-  // stays open: no impulse, and it is not a touching contact.
+  // At 4 m/s it covers 0.04 m: the gap stays open and is wider than speculative_distance
+  // (0.02 m), so there is no contact at all; at 0.015 m it is a speculative contact that
+  // stays open: no impulse, and not a touching contact.
+  bodies[0].position = Vec3(0, 0.55, 0);
   bodies[0].velocity = Vec3(0, -4, 0);
   solver.solve_velocities(bodies, floor_plane(), no_gravity, dt, ContactVelocities::current);
   EXPECT_EQ(bodies[0].velocity.y(), -4.0);
+  EXPECT_EQ(solver.contacts().size(), 0u);
+  bodies[0].position = Vec3(0, 0.515, 0);
+  bodies[0].velocity = Vec3(0, -1, 0);
+  solver.solve_velocities(bodies, floor_plane(), no_gravity, dt, ContactVelocities::current);
+  EXPECT_EQ(bodies[0].velocity.y(), -1.0);
   ASSERT_EQ(solver.contacts().size(), 1u);
   EXPECT_FALSE(touched(solver.contacts()[0]));
 }

@@ -101,10 +101,12 @@ T.case("contacts(): a ball on the floor and two balls touching", function()
   local cs = w:contacts()
   T.equal(#cs, 1, "one contact")
   local c = cs[1]
-  T.equal(c.a, ball, "a is the ball")
-  T.equal(c.b, nil, "b is nil for a plane")
+  -- One convention for every contact: the normal from a to b, the impulses b's. Against a
+  -- plane, a is the plane (a = nil, plane = its index) and b the ball.
+  T.equal(c.a, nil, "a is the plane: nil")
+  T.equal(c.b, ball, "b is the ball")
   T.equal(c.plane, 1, "the plane's index")
-  T.near(c.normal, vec3(0, 1, 0), 0, "the plane's normal")
+  T.near(c.normal, vec3(0, 1, 0), 0, "the plane's normal, from the plane to the ball")
   T.near(c.point, vec3(0, 0, 0), 1e-12, "at the bottom of the ball")
   T.near(c.depth, 0, 1e-12, "touching")
   -- Holding the ball for one step: the floor gives exactly what gravity took, m g Δt.
@@ -117,13 +119,21 @@ T.case("contacts(): a ball on the floor and two balls touching", function()
   local v = world{gravity = vec3()}
   local a = v:add(body.sphere{mass = 1, radius = 0.5, velocity = vec3(2, 0, 0), restitution = 1})
   local b = v:add(body.sphere{mass = 1, radius = 0.5, position = vec3(1.01, 0, 0)})
+  -- The 1 cm gap closes during the first step of 0.01 s: a lands on b at its end (the
+  -- relative speed brought to 1 cm / 0.01 s = 1 m/s, impulse 0.5), and they bounce in the
+  -- next step with the 2 m/s they met with.
   v:step(0.01)
   cs = v:contacts()
   T.equal(#cs, 1, "one contact between the balls")
   T.equal(cs[1].a, a, "a"); T.equal(cs[1].b, b, "b"); T.equal(cs[1].plane, nil, "no plane")
   T.near(cs[1].normal, vec3(1, 0, 0), 1e-15, "from a to b")
+  T.near(cs[1].depth, -0.01, 1e-12, "the gap the step closed")
+  T.near(cs[1].normal_impulse, 0.5, 1e-12, "landing impulse")
+  local landing = cs[1].normal_impulse
+  v:step(0.01)
+  cs = v:contacts()
   -- Equal masses, e = 1: they exchange velocities (001 "System Of Particles"), J = m v = 2.
-  T.near(cs[1].normal_impulse, 2, 1e-12, "impulse")
+  T.near(landing + cs[1].normal_impulse, 2, 1e-12, "impulse")
   T.near(a.velocity, vec3(0, 0, 0), 1e-12, "a stops")
   T.near(b.velocity, vec3(2, 0, 0), 1e-12, "b leaves at 2 m/s")
   v:remove(a)

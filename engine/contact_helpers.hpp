@@ -1,0 +1,78 @@
+// Small helpers shared by the contact solver's files (engine/contact_solver.cpp,
+// contact_finder.cpp, contact_positions.cpp): not part of the engine's interface.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <tuple>
+
+#include "engine/contact_solver.hpp"
+
+namespace rigidlab::contact_detail {
+
+// Two unit tangents completing the unit normal n to a right-handed basis, continuous in n
+// except across n.z = 0 (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
+inline void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z());
+  const double b = n.x() * n.y() * a;
+  t1 = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
+}
+
+// The friction directions of a point: the first along its slip (its tangential relative
+// velocity), so that when it slides the Coulomb impulse μ λn opposes the slip, as Coulomb's
+// law has it (with two independent tangents of unequal effective masses the clamped impulse
+// would lean off it: a box sliding down a slope then got 94 % of its friction); any basis when
+// it does not slip.
+inline void friction_directions(const Vec3& n, const Vec3& slip, Vec3& t1, Vec3& t2) {
+  const double speed = slip.norm();
+  if (!(speed > 1e-9)) return tangent_basis(n, t1, t2);
+  t1 = slip / speed;
+  t2 = n.cross(t1);
+}
+
+// The order of contacts: by the first body (a, or the body of a plane contact), then other
+// bodies before planes, then the other body or plane, then the feature.
+inline auto sort_key(std::size_t a, std::size_t b, std::size_t plane, std::uint32_t feature) {
+  const bool is_plane = a == no_body;
+  return std::make_tuple(is_plane ? b : a, is_plane, is_plane ? plane : b, feature);
+}
+inline auto sort_key(const ContactInfo& c) { return sort_key(c.a, c.b, c.plane, c.feature); }
+
+// Velocity of the material point at offset r from the COM of a solver body (m/s).
+template <class SolverBody>
+Vec3 point_velocity_of(const SolverBody& s, const Vec3& r) {
+  return s.velocity + s.angular_velocity.cross(r);
+}
+
+// 001_* Appendix D: J W Jᵀ of one constraint direction d (unit), the inverse of the mass
+// the contact feels along d (1/kg).
+template <class SolverBody>
+double inverse_effective_mass(const SolverBody& a, const Vec3& r_a, const SolverBody& b,
+                              const Vec3& r_b, const Vec3& d) {
+  const Vec3 ra_d = r_a.cross(d), rb_d = r_b.cross(d);
+  return a.inverse_mass + b.inverse_mass + ra_d.dot(a.inverse_inertia * ra_d) +
+         rb_d.dot(b.inverse_inertia * rb_d);
+}
+
+inline double inverse_or_zero(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
+
+// m, the farthest a shape is looked ahead in one step.
+constexpr double max_sweep = 1e6;
+
+// How long the forces act on the velocities the impulses are computed against (s).
+inline double force_time(ContactVelocities velocities, double dt) {
+  switch (velocities) {
+    case ContactVelocities::after_forces:
+      return dt;
+    case ContactVelocities::mid_step:
+      return 0.5 * dt;
+    case ContactVelocities::current:
+      break;
+  }
+  return 0.0;
+}
+
+}  // namespace rigidlab::contact_detail
