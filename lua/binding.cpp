@@ -147,6 +147,30 @@ double opt_finite(lua_State* L, int arg, const char* what, double fallback) {
   return lua_isnoneornil(L, arg) ? fallback : check_finite(L, arg, what);
 }
 
+bool to_integer(lua_State* L, int index, lua_Integer& out) {
+  if (lua_type(L, index) != LUA_TNUMBER) return false;
+  int is_integer = 0;
+  out = lua_tointegerx(L, index, &is_integer);
+  return is_integer != 0;
+}
+
+lua_Integer check_sequence(lua_State* L, int arg, const char* expected, const char* what) {
+  arg = lua_absindex(L, arg);
+  if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, expected);
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, arg));
+  lua_pushnil(L);
+  while (lua_next(L, arg) != 0) {
+    lua_pop(L, 1);
+    if (lua_isinteger(L, -1) && lua_tointeger(L, -1) >= 1 && lua_tointeger(L, -1) <= n) continue;
+    const char* key = luaL_tolstring(L, -1, nullptr);
+    if (n == 0)
+      arg_error(L, arg, "%s: unexpected key '%s' (the entries of a list are numbered 1, 2, ...; "
+                        "this one has none)", what, key);
+    arg_error(L, arg, "%s: unexpected key '%s' (entries must be numbered 1 to %I)", what, key, n);
+  }
+  return n;
+}
+
 void new_metatable(lua_State* L, const char* type_name, const void* key) {
   lua_createtable(L, 0, 16);
   lua_pushstring(L, type_name);
@@ -252,6 +276,9 @@ Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, b
                                                                         : luaL_typename(L, -1);
     arg_error(L, arg, "field '%s' must be a vec3, got %s", name, got);
   }
+  // A vec3 can hold inf (a row of a static body's infinite tensor); no field takes one.
+  if (!is_finite(*v))
+    arg_error(L, arg, "field '%s' must be finite, got %s", name, luaL_tolstring(L, -1, nullptr));
   const Vec3 result = *v;
   lua_pop(L, 1);
   return result;

@@ -55,6 +55,13 @@ double check_finite(lua_State* L, int arg, const char* what);
 double check_positive(lua_State* L, int arg, const char* what);      // finite and > 0
 double check_nonnegative(lua_State* L, int arg, const char* what);   // finite and >= 0
 double opt_finite(lua_State* L, int arg, const char* what, double fallback);
+// The value at `index` as an integer when it is a number with an integral value: 2 and 2.0,
+// as luaL_checkinteger accepts (not 2.5, not the string "2"). False otherwise.
+bool to_integer(lua_State* L, int index, lua_Integer& out);
+// The length n of the list at `arg` (a table, else a type error naming `expected`), whose keys
+// must be exactly 1..n: a named field ({1, x = 5}) or an entry past a hole would otherwise be
+// ignored. Messages start with `what`: "list of vec3: unexpected key 'x' (...)". n may be 0.
+lua_Integer check_sequence(lua_State* L, int arg, const char* expected, const char* what);
 
 // Registry keys of the metatables (their addresses are the keys; see lua_rawgetp).
 extern const char vec3_metatable_key;

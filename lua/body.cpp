@@ -266,13 +266,16 @@ int body_index(lua_State* L) {
   return 0;
 }
 
-// The vec3 being assigned to body.<key>.
+// The vec3 being assigned to body.<key>: finite (a vec3 can hold inf, e.g. a row of a static
+// body's infinite tensor).
 const Vec3& new_vec3(lua_State* L, const char* key) {
   const Vec3* v = test_vec3(L, 3);
   if (v == nullptr) {
     lua_pushvalue(L, 3);
     luaL_error(L, "body.%s: vec3 expected, got %s", key, top_type_name(L));
   }
+  if (!is_finite(*v))
+    luaL_error(L, "body.%s must be finite, got %s", key, luaL_tolstring(L, 3, nullptr));
   return *v;
 }
 

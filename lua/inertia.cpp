@@ -111,15 +111,7 @@ int solid_ellipsoid(lua_State* L) {
 // The length n >= 1 of the list at `arg`; refuses non-tables, empty lists and keys other than
 // 1..n (a list with holes or named fields is a mistake).
 int check_list(lua_State* L, int arg, const char* expected) {
-  if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, expected);
-  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, arg));
-  lua_pushnil(L);
-  while (lua_next(L, arg) != 0) {
-    lua_pop(L, 1);
-    if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n)
-      arg_error(L, arg, "%s: unexpected key '%s' (entries must be numbered 1 to %d)", expected,
-                luaL_tolstring(L, -1, nullptr), static_cast<int>(n));
-  }
+  const lua_Integer n = check_sequence(L, arg, expected, expected);
   if (n == 0) arg_error(L, arg, "%s: the list is empty", expected);
   if (n > 100000000) arg_error(L, arg, "the list is too long (%I entries)", n);
   return static_cast<int>(n);
@@ -254,6 +246,8 @@ int about_axis(lua_State* L) {
   check_no_extra_args(L, 2);
   const Mat3& I = check_tensor(L, 1);
   const Vec3& n = check_vec3(L, 2);
+  if (!is_finite(n))
+    arg_error(L, 2, "the axis must be finite, got %s", luaL_tolstring(L, 2, nullptr));
   if (is_zero(n)) arg_error(L, 2, "the axis must be a non-zero vector");
   push_result(L, engine_call(L, [&] { return rigidlab::about_axis(I, n); }));
   return 1;

@@ -148,6 +148,12 @@ int motion_simulate(lua_State* L) {
   o.dt = field_positive(L, 1, "dt", 0.0, true);
   o.steps = field_steps(L);
   o.t0 = field_finite(L, 1, "t0", 0.0, false);
+  // The time column t0 + n dt, n = 0 .. steps, must stay finite: it grows monotonically, so
+  // checking the last entry is enough.
+  if (!std::isfinite(o.t0 + o.steps * o.dt))
+    arg_error(L, 1, "the last time t0 + steps·dt overflows (t0 = %s, dt = %s, steps = %d): use "
+                    "a smaller dt or fewer steps", format_number(o.t0).c_str(),
+              format_number(o.dt).c_str(), o.steps);
   if (const Vec3* x = test_vec3(L, x0))
     simulate<Vec3>(L, o, *x, *test_vec3(L, x0 + 1));
   else

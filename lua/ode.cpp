@@ -120,9 +120,11 @@ FirstOrderMethod check_method(lua_State* L, int arg) {
   arg_error(L, arg, "method must be %s, got '%s'", choices, name);
 }
 
-// y given as a table: a non-empty list of finite numbers.
+// y given as a table: a non-empty list of finite numbers, with no other keys (a named field
+// would not be integrated, and f would not see it).
 Eigen::VectorXd check_list(lua_State* L, int arg) {
-  const int size = static_cast<int>(lua_rawlen(L, arg));
+  const int size = static_cast<int>(
+      check_sequence(L, arg, "number, vec3 or table of numbers", "y (a list of numbers)"));
   if (size == 0) arg_error(L, arg, "y must be a number, a vec3 or a non-empty list of numbers");
   Eigen::VectorXd y(size);
   for (int i = 0; i < size; ++i) {

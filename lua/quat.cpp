@@ -46,6 +46,8 @@ int quat_axis_angle_new(lua_State* L) {
   const Vec3& axis = check_vec3(L, 1);
   const double angle = check_finite(L, 2, "angle");
   check_no_extra_args(L, 2);
+  if (!is_finite(axis))  // a vec3 can hold inf: a row of a static body's infinite tensor
+    arg_error(L, 1, "axis must be finite, got %s", luaL_tolstring(L, 1, nullptr));
   if (is_zero(axis)) arg_error(L, 1, "axis must be non-zero");
   push_quat(L, quat_from_axis_angle(axis, angle));
   return 1;

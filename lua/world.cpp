@@ -82,12 +82,14 @@ const char* shown_value(lua_State* L, int index) {
   return luaL_tolstring(L, index, nullptr);
 }
 
-// The substeps value on top of the stack.
+// Why world{} and w.gyroscopic refuse a gyroscopic setting on an rk4 world: it would be ignored.
+constexpr const char* gyroscopic_rk4_rule =
+    "is for the Euler integrators: rk4 always integrates the full Euler equations";
+
+// The substeps value on top of the stack (2.0 counts as 2, as in luaL_checkinteger).
 int check_substeps(lua_State* L, int arg, bool in_table) {
   lua_Integer n = 0;
-  const bool integer = lua_type(L, -1) == LUA_TNUMBER && lua_isinteger(L, -1);
-  if (integer) n = lua_tointeger(L, -1);
-  if (!integer || n < 1 || n > World::max_substeps) {
+  if (!to_integer(L, -1, n) || n < 1 || n > World::max_substeps) {
     const char* got = shown_value(L, -1);
     if (in_table)
       arg_error(L, arg, "field 'substeps' must be an integer from 1 to %d, got %s",
@@ -145,8 +147,7 @@ int world_call(lua_State* L) {
   if (get_field(L, 1, "gyroscopic") != LUA_TNIL) {
     gyroscopic = check_option<3, GyroscopicTerm>(L, 1, gyroscopic_names, "gyroscopic", true);
     if (integrator == Integrator::rk4)
-      arg_error(L, 1, "field 'gyroscopic' is for the Euler integrators: rk4 always integrates "
-                      "the full Euler equations");
+      arg_error(L, 1, "field 'gyroscopic' %s", gyroscopic_rk4_rule);
   }
   if (get_field(L, 1, "substeps") != LUA_TNIL) substeps = check_substeps(L, 1, true);
   ContactSettings contact;
@@ -465,10 +466,9 @@ int world_step(lua_State* L) {
   lua_Integer n = 1;
   if (!lua_isnoneornil(L, 3)) {
     if (lua_type(L, 3) != LUA_TNUMBER) type_error(L, 3, "number");
-    if (!lua_isinteger(L, 3) || lua_tointeger(L, 3) < 1 || lua_tointeger(L, 3) > max_steps_per_call)
+    if (!to_integer(L, 3, n) || n < 1 || n > max_steps_per_call)  // 2.0 counts as 2
       arg_error(L, 3, "n must be an integer from 1 to %d, got %s", int(max_steps_per_call),
                 shown_value(L, 3));
-    n = lua_tointeger(L, 3);
   }
   check_no_extra_args(L, 3);
   if (w.world.stepping())
@@ -588,12 +588,26 @@ int world_newindex(lua_State* L) {
                                                                           : luaL_typename(L, 3);
       luaL_error(L, "world.gravity: vec3 expected, got %s", got);
     }
+    if (!is_finite(*g))
+      luaL_error(L, "world.gravity must be finite, got %s", luaL_tolstring(L, 3, nullptr));
     w.world.set_gravity(*g);
   } else if (is("integrator")) {
-    w.world.set_integrator(check_option<3, Integrator>(L, 3, integrator_names, "integrator", false));
+    // rk4 ignores the gyroscopic setting, so one that is not the default must be undone first
+    // (as world{} refuses integrator = "rk4" with a gyroscopic field).
+    const Integrator integrator =
+        check_option<3, Integrator>(L, 3, integrator_names, "integrator", false);
+    const GyroscopicTerm gyroscopic = w.world.gyroscopic();
+    if (integrator == Integrator::rk4 && gyroscopic != GyroscopicTerm::implicit)
+      luaL_error(L, "world.integrator = 'rk4' ignores world.gyroscopic = '%s' (rk4 always "
+                    "integrates the full Euler equations): set world.gyroscopic = 'implicit' "
+                    "first", gyroscopic_names[static_cast<int>(gyroscopic)]);
+    w.world.set_integrator(integrator);
   } else if (is("gyroscopic")) {
-    w.world.set_gyroscopic(
-        check_option<3, GyroscopicTerm>(L, 3, gyroscopic_names, "gyroscopic", false));
+    const GyroscopicTerm gyroscopic =
+        check_option<3, GyroscopicTerm>(L, 3, gyroscopic_names, "gyroscopic", false);
+    if (w.world.integrator() == Integrator::rk4)
+      luaL_error(L, "world.gyroscopic %s", gyroscopic_rk4_rule);
+    w.world.set_gyroscopic(gyroscopic);
   } else if (is("iterations") || is("restitution_threshold")) {
     ContactSettings contact = w.world.contact_settings();
     if (is("iterations")) contact.iterations = check_iterations(L, 3, false);
@@ -702,7 +716,8 @@ const Entry call_entry[] = {
      "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
      "order on the whole state, gyroscopic term included); gyroscopic, for the Euler methods:\n"
      "\"implicit\" (default; one Newton step on ω × Iω per substep, stable), \"explicit\" (gains\n"
-     "energy) or \"off\"; substeps (default 1) per w:step(dt).\n"
+     "energy) or \"off\" (refused on an rk4 world, which would ignore it; switching to rk4\n"
+     "needs gyroscopic = \"implicit\"); substeps (default 1) per w:step(dt).\n"
      "Contacts: bodies with a shape collide with each other and with planes (w:add_plane);\n"
      "iterations (default 10) velocity sweeps of the contact solver per substep;\n"
      "restitution_threshold (m/s, default 1): slower impacts do not bounce.\n"

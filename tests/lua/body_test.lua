@@ -194,7 +194,18 @@ T.case("field errors", function()
   T.fails(function() b.orientation = vec3(1, 0, 0) end, "body.orientation: quat expected, got vec3")
   T.fails(function() b.orientation = quat(0, 0, 0, 0) end,
     "body.orientation: the zero quaternion is not a rotation")
-  T.fails(function() b.position = vec3(0 / 0, 0, 0) end, "")  -- a vec3 cannot even hold NaN
+  T.fails(function() return vec3(0 / 0, 0, 0) end,
+    "bad argument #1 to 'vec3' (x must be finite, got nan)")  -- no vec3 holds NaN, but one can
+  local infinite = body{static = true}.inertia:row(1)     -- hold inf: a static body's tensor row
+  T.equal(infinite.x, math.huge, "an infinite vec3")
+  T.fails(function() b.position = infinite end, "body.position must be finite, got (inf, 0, 0)")
+  T.fails(function() b.velocity = infinite end, "body.velocity must be finite, got (inf, 0, 0)")
+  T.fails(function() b.angular_velocity = infinite end,
+    "body.angular_velocity must be finite, got (inf, 0, 0)")
+  T.fails(function() return body{mass = 1, inertia = mat3.identity(), position = infinite} end,
+    "bad argument #1 to 'body' (field 'position' must be finite, got (inf, 0, 0))")
+  T.fails(function() return body.sphere{mass = 1, radius = 1, angular_velocity = infinite} end,
+    "bad argument #1 to 'body.sphere' (field 'angular_velocity' must be finite, got (inf, 0, 0))")
   -- NaN reads "nan" (printf writes the 0/0 of x86 as "-nan").
   T.fails(function() b.friction = 0 / 0 end, "body.friction must be finite and >= 0, got nan")
   T.fails(function() b.restitution = 0 / 0 end, "body.restitution must be in [0, 1], got nan")

@@ -171,6 +171,12 @@ T.case("exact error messages", function()
   T.equal(error_of(inertia.points, {{mass = 1, pos = vec3()}, {mass = 2, pos = vec3(1)},
                                     {mass = 0, pos = vec3()}}),
     "bad argument #1 to 'inertia.points' (entry 3: field 'mass' must be > 0, got 0)", "list entry")
+  T.equal(error_of(inertia.points, {a = {mass = 1, pos = vec3()}}),
+    "bad argument #1 to 'inertia.points' (list of {mass =, pos =}: unexpected key 'a' (the "
+    .. "entries of a list are numbered 1, 2, ...; this one has none))", "only a named key")
+  T.equal(error_of(inertia.about_axis, mat3.identity(), body{static = true}.inertia:row(1)),
+    "bad argument #2 to 'inertia.about_axis' (the axis must be finite, got (inf, 0, 0))",
+    "infinite axis")
   T.equal(error_of(inertia.points, {{mass = 1, position = vec3()}}),
     "bad argument #1 to 'inertia.points' (entry 1: unknown field 'position' (the fields are "
     .. "{mass =, pos =}))", "unknown field")

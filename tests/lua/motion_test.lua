@@ -98,6 +98,9 @@ T.case("errors name the function, the field and the rule", function()
   fails({method = 4, accel = ok_accel, x0 = 0, dt = 1, steps = 1},
     "bad argument #1 to 'motion.simulate' (field 'method' must be a string, got number)",
     "method type")
+  fails({accel = ok_accel, x0 = 0, dt = 1e308, steps = 3},
+    "bad argument #1 to 'motion.simulate' (the last time t0 + steps·dt overflows (t0 = 0, " ..
+    "dt = 1e+308, steps = 3): use a smaller dt or fewer steps)", "time overflow")
   fails({x0 = 0, dt = 1, steps = 1},
     "bad argument #1 to 'motion.simulate' (field 'accel' is required)", "no accel")
   fails({accel = 3, x0 = 0, dt = 1, steps = 1},

@@ -90,6 +90,11 @@ T.case("errors name the function and the argument", function()
     {1, true}, 0.1)
   fails("bad argument #4 to 'ode.step' (y[1] must be finite, got -inf)", "rk4", grow, 0,
     {-math.huge}, 0.1)
+  -- A named key would be neither integrated nor shown to f: refused, not ignored.
+  fails("bad argument #4 to 'ode.step' (y (a list of numbers): unexpected key 'x' (entries must " ..
+    "be numbered 1 to 1))", "rk4", grow, 0, {1, x = 5}, 0.1)
+  fails("bad argument #4 to 'ode.step' (y (a list of numbers): unexpected key 'x' (the entries " ..
+    "of a list are numbered 1, 2, ...; this one has none))", "rk4", grow, 0, {x = 5}, 0.1)
   fails("bad argument #5 to 'ode.step' (dt must be > 0, got -0.1)", "rk4", grow, 0, 1, -0.1)
   fails("bad argument #5 to 'ode.step' (number expected, got no value)", "rk4", grow, 0, 1)
   fails("bad argument #6 to 'ode.step' (no more than 5 arguments expected, got 6)", "rk4", grow,

@@ -66,6 +66,10 @@ T.case("errors", function()
     "calling 'quat:normalized' on bad self (the zero quaternion is not a rotation)", "zero")
   T.fails(function() return quat.axis_angle(vec3(), 1) end,
     "bad argument #1 to 'quat.axis_angle' (axis must be non-zero)", "zero axis")
+  -- A vec3 can hold inf (a row of a static body's tensor); the engine's exception must not
+  -- escape as a bare value.
+  T.fails(function() return quat.axis_angle(body{static = true}.inertia:row(1), 1) end,
+    "bad argument #1 to 'quat.axis_angle' (axis must be finite, got (inf, 0, 0))", "inf axis")
   T.fails(function() return quat.axis_angle(vec3(1, 0, 0), 0/0) end,
     "bad argument #2 to 'quat.axis_angle' (angle must be finite, got nan)", "NaN angle")
   T.fails(function() return quat.from_mat3(mat3.diag(1, 1, -1)) end,

@@ -9,10 +9,14 @@ T.case("defaults and fields", function()
   T.equal(w.gravity, vec3(0, -9.81, 0), "gravity"); T.equal(w.time, 0, "time")
   T.equal(w.integrator, "semi_implicit", "integrator"); T.equal(w.gyroscopic, "implicit", "gyroscopic")
   T.equal(w.substeps, 1, "substeps")
-  w.gravity = vec3(0, 0, -1); w.integrator = "rk4"; w.gyroscopic = "off"; w.substeps = 4
-  T.equal(w.gravity, vec3(0, 0, -1), "gravity written"); T.equal(w.integrator, "rk4", "integrator written")
+  w.gravity = vec3(0, 0, -1); w.integrator = "euler"; w.gyroscopic = "off"; w.substeps = 4
+  T.equal(w.gravity, vec3(0, 0, -1), "gravity written"); T.equal(w.integrator, "euler", "integrator written")
   T.equal(w.gyroscopic, "off", "gyroscopic written"); T.equal(w.substeps, 4, "substeps written")
+  w.gyroscopic = "implicit"; w.integrator = "rk4"
   T.equal(tostring(w), "world(0 bodies, t=0, rk4)", "tostring")
+  w.substeps = 3.0
+  T.equal(w.substeps, 3, "3.0 is an integer, as for luaL_checkinteger")
+  T.equal(world{substeps = 2.0}.substeps, 2, "also in the constructor")
   local v = world{gravity = vec3(1, 0, 0), integrator = "euler", gyroscopic = "explicit", substeps = 2}
   T.equal(v.integrator, "euler", "constructor integrator"); T.equal(v.substeps, 2, "constructor substeps")
 end)
@@ -108,6 +112,72 @@ T.case("force callbacks: called at every rk4 stage with the stage state", functi
   T.near(b2.position, b1.position, 1e-12, "position")
   T.near(b2.angular_velocity, b1.angular_velocity, 1e-12, "angular velocity")
   T.near(b2.orientation, b1.orientation, 1e-12, "orientation")
+end)
+
+T.case("gyroscopic and rk4: the field refuses what the constructor refuses", function()
+  local w = world{integrator = "rk4"}
+  T.fails(function() w.gyroscopic = "explicit" end,
+    "world.gyroscopic is for the Euler integrators: rk4 always integrates the full Euler equations")
+  T.equal(w.gyroscopic, "implicit", "unchanged")
+  local v = world{gyroscopic = "explicit"}
+  T.fails(function() v.integrator = "rk4" end,
+    "world.integrator = 'rk4' ignores world.gyroscopic = 'explicit' (rk4 always integrates the "
+    .. "full Euler equations): set world.gyroscopic = 'implicit' first")
+  T.equal(v.integrator, "semi_implicit", "unchanged")
+  v.gyroscopic = "implicit"; v.integrator = "rk4"
+  T.equal(v.integrator, "rk4", "allowed once the gyroscopic setting is the default")
+end)
+
+-- The stage states themselves, not only a comparison with the built-in spring: a body moving
+-- at constant v (no forces) is at x0 + c v dt at the stage times t + c dt, c = 0, ½, ½, 1.
+T.case("force callbacks: rk4 stage times and states", function()
+  local w = world{integrator = "rk4", gravity = vec3()}
+  local b = w:add(body.sphere{mass = 1, radius = 1, position = vec3(1, 0, 0), velocity = vec3(2, 0, 0)})
+  w:step(0.5)
+  local seen = {}
+  w:add_force(function(_, t) seen[#seen + 1] = {t, b.position.x} end)
+  w:step(0.25)
+  local want = {{0.5, 2}, {0.625, 2.25}, {0.625, 2.25}, {0.75, 2.5}}
+  T.equal(#seen, 4, "four stages")
+  for i = 1, 4 do
+    T.near(seen[i][1], want[i][1], 1e-15, "stage time " .. i)
+    T.near(seen[i][2], want[i][2], 1e-15, "stage position " .. i)
+  end
+end)
+
+-- ẍ = −x + cos 2t from rest at 0 (a callback force): x = (cos t − cos 2t)/3. The largest error
+-- over 3 s falls 16-fold when dt halves only if the callback sees the stage states and times.
+T.case("force callbacks: rk4 with a callback force converges at 4th order to the closed form", function()
+  local function largest_error(dt)
+    local w = world{integrator = "rk4", gravity = vec3()}
+    local b = w:add(body.sphere{mass = 2, radius = 0.1})
+    w:add_force(function(_, t) b:apply_force(vec3(b.mass * (-b.position.x + math.cos(2 * t)), 0, 0)) end)
+    local largest = 0
+    for _ = 1, math.floor(3 / dt + 0.5) do
+      w:step(dt)
+      local t = w.time
+      largest = math.max(largest, math.abs(b.position.x - (math.cos(t) - math.cos(2 * t)) / 3))
+    end
+    return largest
+  end
+  local coarse, fine = largest_error(0.1), largest_error(0.05)
+  T.near(math.log(coarse / fine, 2), 4, 0.1, "order")
+  T.near(coarse, 0, 1e-5, "small")
+end)
+
+-- A stage state that overflows (v = 1e306 m/s, dt = 1000 s) ends the step before a callback
+-- sees it: before, the callback was shown (inf, 0, 0) and could store it and write it back.
+T.case("force callbacks never see a non-finite stage state", function()
+  local w = world{integrator = "rk4", gravity = vec3()}
+  local b = w:add(body.sphere{mass = 1, radius = 1, velocity = vec3(1e306, 0, 0)})
+  local seen = {}
+  w:add_force(function() seen[#seen + 1] = b.position end)
+  T.fails(function() w:step(1000) end,
+    "'world:step': body 1 of 1 would get a non-finite position in the step from t = 0 s to "
+    .. "t = 1000 s; nothing was changed (the world is still at t = 0 s)")
+  T.equal(#seen, 1, "only the first stage was shown")
+  T.equal(seen[1], vec3(), "and it was finite")
+  T.equal(b.position, vec3(), "undone")
 end)
 
 T.case("force callbacks: arguments and stage times", function()
@@ -264,6 +334,10 @@ T.case("constructor and field errors", function()
   local w = world()
   T.fails(function() w.time = 3 end, "world.time is read-only (it advances with w:step)")
   T.fails(function() w.gravity = 1 end, "world.gravity: vec3 expected, got number")
+  local infinite = body{static = true}.inertia:row(1)  -- a vec3 can hold inf
+  T.fails(function() w.gravity = infinite end, "world.gravity must be finite, got (inf, 0, 0)")
+  T.fails(function() return world{gravity = infinite} end,
+    "bad argument #1 to 'world' (field 'gravity' must be finite, got (inf, 0, 0))")
   T.fails(function() w.integrator = "verlet" end,
     "world.integrator must be one of 'euler', 'semi_implicit', 'rk4', got 'verlet'")
   T.fails(function() w.substeps = -1 end, "world.substeps must be an integer from 1 to 10000, got -1")
@@ -286,6 +360,9 @@ T.case("method errors", function()
     "bad argument #2 to 'world:step' (n must be an integer from 1 to 100000000, got 0)")
   T.fails(function() w:step(0.1, 2.5) end,
     "bad argument #2 to 'world:step' (n must be an integer from 1 to 100000000, got 2.5)")
+  local other = world()
+  other:step(0.1, 2.0)
+  T.near(other.time, 0.2, 1e-15, "n = 2.0 is 2 steps, as luaL_checkinteger would take it")
   T.fails(function() w:step(0.1, 1e12) end,
     "bad argument #2 to 'world:step' (n must be an integer from 1 to 100000000, got 1000000000000)")
   T.fails(function() w:step(0.1, "3") end, "bad argument #2 to 'world:step' (number expected, got string)")
