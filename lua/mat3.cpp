@@ -11,19 +11,23 @@
 namespace rigidlab::lua {
 namespace {
 
-Mat3& push_finite_mat3(lua_State* L, const Mat3& m) {
-  if (!is_finite(m)) function_error(L, "result is not finite (overflow or invalid operation)");
+// Pushes a result that must be finite; an overflow is blamed on argument `arg` (the operand
+// that made it too large), so the error names the function and the argument.
+Mat3& push_finite_mat3(lua_State* L, const Mat3& m, int arg) {
+  if (!is_finite(m))
+    arg_error(L, arg, "the result is not finite (an entry overflows the largest double, 1.8e308)");
   return push_mat3(L, m);
 }
 
-// One row of mat3{{..},{..},{..}}: a table of three finite numbers.
+// One row of mat3{{..},{..},{..}}: a table of three finite numbers. Raw access: a table's
+// metamethods (__len, __index) are not run, so they cannot raise errors of their own here.
 void read_row(lua_State* L, int row, Mat3& m) {
-  if (lua_geti(L, 1, row + 1) != LUA_TTABLE)
+  if (lua_rawgeti(L, 1, row + 1) != LUA_TTABLE)
     arg_error(L, 1, "row %d must be a table of 3 numbers, got %s", row + 1, luaL_typename(L, -1));
-  if (luaL_len(L, -1) != 3)
-    arg_error(L, 1, "row %d must have 3 numbers, got %d", row + 1, (int)luaL_len(L, -1));
+  if (lua_rawlen(L, -1) != 3)
+    arg_error(L, 1, "row %d must have 3 numbers, got %d", row + 1, (int)lua_rawlen(L, -1));
   for (int j = 0; j < 3; ++j) {
-    if (lua_geti(L, -1, j + 1) != LUA_TNUMBER)
+    if (lua_rawgeti(L, -1, j + 1) != LUA_TNUMBER)
       arg_error(L, 1, "entry (%d, %d) must be a number, got %s", row + 1, j + 1,
                 luaL_typename(L, -1));
     const double x = lua_tonumber(L, -1);
@@ -40,15 +44,16 @@ void read_row(lua_State* L, int row, Mat3& m) {
 int mat3_call(lua_State* L) {
   lua_remove(L, 1);  // the mat3 table itself
   Mat3 m;
-  if (lua_gettop(L) == 1 && lua_type(L, 1) == LUA_TTABLE) {
-    if (luaL_len(L, 1) != 3) arg_error(L, 1, "a table of 3 rows expected, got %d rows",
-                                       (int)luaL_len(L, 1));
+  if (lua_type(L, 1) == LUA_TTABLE) {
+    check_no_extra_args(L, 1);
+    if (lua_rawlen(L, 1) != 3)
+      arg_error(L, 1, "a table of 3 rows expected, got %d rows", (int)lua_rawlen(L, 1));
     for (int i = 0; i < 3; ++i) read_row(L, i, m);
   } else {
-    if (lua_gettop(L) != 9)
-      function_error(L, "9 numbers (row-major) or a table of 3 rows expected, got %d arguments",
-                     lua_gettop(L));
-    for (int k = 0; k < 9; ++k) {
+    if (lua_gettop(L) <= 1 && lua_type(L, 1) != LUA_TNUMBER)
+      type_error(L, 1, "number or table of 3 rows");
+    check_no_extra_args(L, 9);
+    for (int k = 0; k < 9; ++k) {  // the first missing one is named: "got no value"
       const std::string name = "a" + std::to_string(k / 3 + 1) + std::to_string(k % 3 + 1);
       m(k / 3, k % 3) = check_finite(L, k + 1, name.c_str());
     }
@@ -77,7 +82,8 @@ int mat3_diag(lua_State* L) {
     d = *v;
   } else {
     check_no_extra_args(L, 3);
-    d = Vec3(check_finite(L, 1, "a"), check_finite(L, 2, "b"), check_finite(L, 3, "c"));
+    static const char* const names[] = {"a", "b", "c"};
+    for (int i = 0; i < 3; ++i) d[i] = check_finite(L, i + 1, names[i]);  // in order
   }
   push_mat3(L, d.asDiagonal());
   return 1;
@@ -133,16 +139,59 @@ int mat3_transpose(lua_State* L) {
   return 1;
 }
 
+// The power of two that moves a row's or column's largest entry halfway towards [1, 2) in
+// log scale, or 0 when it is there (or the row is zero).
+int half_shift(double largest) {
+  if (!(largest > 0.0)) return 0;
+  int e = 0;
+  std::frexp(largest, &e);
+  const int d = e - 1;  // floor(log2(largest))
+  return d == 0 ? 0 : -(d + (d > 0 ? 1 : -1)) / 2;
+}
+
+// Ruiz's equilibration: A = D_r M D_c with D_r = diag(2^row_exp), D_c = diag(2^col_exp),
+// found by scaling each row, then each column, by about 1/sqrt of its largest entry until all
+// lie in [1, 2). It balances rows and columns of any scales; powers of two scale exactly.
+Mat3 equilibrate(const Mat3& m, int row_exp[3], int col_exp[3]) {
+  Mat3 a = m;
+  for (int sweep = 0; sweep < 64; ++sweep) {  // the imbalance halves every sweep
+    bool moved = false;
+    for (int i = 0; i < 3; ++i) {
+      const int shift = half_shift(a.row(i).cwiseAbs().maxCoeff());
+      for (int j = 0; j < 3; ++j) a(i, j) = std::ldexp(a(i, j), shift);
+      row_exp[i] += shift;
+      moved = moved || shift != 0;
+    }
+    for (int j = 0; j < 3; ++j) {
+      const int shift = half_shift(a.col(j).cwiseAbs().maxCoeff());
+      for (int i = 0; i < 3; ++i) a(i, j) = std::ldexp(a(i, j), shift);
+      col_exp[j] += shift;
+      moved = moved || shift != 0;
+    }
+    if (!moved) break;
+  }
+  return a;
+}
+
 int mat3_inverse(lua_State* L) {
   const Mat3& m = check_mat3(L, 1);
   check_no_extra_args(L, 1);
-  // Full-pivot LU decides invertibility relative to the matrix's own scale, so a tensor of
-  // 1e-6 kg m² is not called singular merely for being small.
-  const Eigen::FullPivLU<Mat3> lu(m);
+  // Invertibility is decided on the equilibrated matrix (see equilibrate), not on M: full-pivot
+  // LU's rank threshold is relative to the largest pivot, which one huge entry would set, so
+  // diag(1e308, 1, 1) would be "rank 1". M⁻¹ = D_c A⁻¹ D_r.
+  int row_exp[3] = {0, 0, 0}, col_exp[3] = {0, 0, 0};
+  const Mat3 scaled = equilibrate(m, row_exp, col_exp);
+  const Eigen::FullPivLU<Mat3> lu(scaled);
   if (!lu.isInvertible())
     arg_error(L, 1, "matrix is singular (rank %d, det = %s)", (int)lu.rank(),
               format_number(m.determinant()).c_str());
-  push_finite_mat3(L, lu.inverse());
+  Mat3 inverse = lu.inverse();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      inverse(i, j) = std::ldexp(inverse(i, j), col_exp[i] + row_exp[j]);
+  if (!is_finite(inverse))
+    arg_error(L, 1, "the inverse is not finite (an entry overflows the largest double, 1.8e308)");
+  push_mat3(L, inverse);
   return 1;
 }
 
@@ -192,14 +241,14 @@ void check_two_mat3(lua_State* L, const Mat3*& a, const Mat3*& b) {
 int mat3_add(lua_State* L) {
   const Mat3 *a, *b;
   check_two_mat3(L, a, b);
-  push_finite_mat3(L, *a + *b);
+  push_finite_mat3(L, *a + *b, 2);
   return 1;
 }
 
 int mat3_sub(lua_State* L) {
   const Mat3 *a, *b;
   check_two_mat3(L, a, b);
-  push_finite_mat3(L, *a - *b);
+  push_finite_mat3(L, *a - *b, 2);
   return 1;
 }
 
@@ -216,15 +265,16 @@ int mat3_mul(lua_State* L) {
       arg_error(L, 1, "vec3 * mat3 is not defined (vectors are columns): use M * v or "
                       "M:transpose() * v");
     if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "number");
-    push_finite_mat3(L, lua_tonumber(L, 1) * check_mat3(L, 2));
+    push_finite_mat3(L, lua_tonumber(L, 1) * check_mat3(L, 2), 1);
   } else if (const Vec3* v = test_vec3(L, 2)) {
     const Vec3 result = *a * *v;
-    if (!is_finite(result)) function_error(L, "result is not finite (overflow)");
+    if (!is_finite(result))
+      arg_error(L, 2, "the result is not finite (a component overflows the largest double, 1.8e308)");
     push_vec3(L, result);
   } else if (const Mat3* b = test_mat3(L, 2)) {
-    push_finite_mat3(L, *a * *b);
+    push_finite_mat3(L, *a * *b, 2);
   } else if (lua_type(L, 2) == LUA_TNUMBER) {
-    push_finite_mat3(L, *a * lua_tonumber(L, 2));
+    push_finite_mat3(L, *a * lua_tonumber(L, 2), 2);
   } else {
     type_error(L, 2, "vec3, mat3 or number");
   }
@@ -235,7 +285,7 @@ int mat3_div(lua_State* L) {
   const Mat3& m = check_mat3(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a mat3 by zero");
-  push_finite_mat3(L, m / s);
+  push_finite_mat3(L, m / s, 2);
   return 1;
 }
 
@@ -271,14 +321,15 @@ int mat3_index(lua_State* L) {
   check_mat3(L, 1);
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  luaL_error(L, "mat3 has no field '%s' (use M:get(i, j), M:row(i), M:col(j); see help(\"mat3\"))",
-             luaL_tolstring(L, 2, nullptr));
+  luaL_error(L, "bad field '%s' of mat3 (no such field: use M:get(i, j), M:row(i), M:col(j); "
+                "see help(\"mat3\"))", luaL_tolstring(L, 2, nullptr));
   return 0;
 }
 
 int mat3_newindex(lua_State* L) {
   check_mat3(L, 1);
-  luaL_error(L, "mat3 values are immutable: build a new one with mat3(...)");
+  luaL_error(L, "bad field '%s' of mat3 (matrices are immutable: build a new one with mat3(...))",
+             luaL_tolstring(L, 2, nullptr));
   return 0;
 }
 

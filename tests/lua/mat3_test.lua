@@ -62,10 +62,32 @@ T.case("eigen on random symmetric matrices", function()
   T.near(axes:col(1), vec3(0, 1, 0), 0, "axis of the smallest value")
 end)
 
+T.case("inverse: decided on the equilibrated matrix, so scale alone is not singularity", function()
+  T.equal(mat3.diag(1e308, 1, 1):inverse(), mat3.diag(1e-308, 1, 1), "huge entry")
+  T.equal(mat3.diag(1e-6, 2e-6, 4e-6):inverse(), mat3.diag(1e6, 5e5, 2.5e5), "small tensor")
+  -- Rows and columns of very different sizes: M M⁻¹ = E to rounding, entry by entry.
+  local r, c = {2^600, 1, 2^-600}, {2^-300, 2^200, 1}
+  local base = mat3(4, 1, 2, 1, 3, 0, 2, 0, 5)
+  local rows = {}
+  for i = 1, 3 do
+    rows[i] = {}
+    for j = 1, 3 do rows[i][j] = r[i] * base:get(i, j) * c[j] end
+  end
+  local M = mat3(rows)
+  local product = M:inverse() * M
+  T.near(product, mat3.identity(), 1e-14, "M⁻¹ M for rows 2^600..2^-600, columns 2^-300..2^200")
+  T.fails(function() return mat3(1, 2, 3, 2, 4, 6.000000000000001, 0, 0, 1):inverse() end,
+    "calling 'mat3:inverse' on bad self (matrix is singular (rank 2", "singular to rounding")
+end)
+
 T.case("errors", function()
   local m = mat3.identity()
   T.fails(function() return mat3(1, 2) end,
-    "'mat3': 9 numbers (row-major) or a table of 3 rows expected, got 2 arguments", "count")
+    "bad argument #3 to 'mat3' (number expected, got no value)", "count")
+  T.fails(function() return mat3(1, 2, 3, 4, 5, 6, 7, 8, 9, 10) end,
+    "bad argument #10 to 'mat3' (no more than 9 arguments expected, got 10)", "too many")
+  T.fails(function() return mat3("x") end,
+    "bad argument #1 to 'mat3' (number or table of 3 rows expected, got string)", "neither")
   T.fails(function() return mat3(1, 2, 3, 4, 5, 6, 7, 8, 0/0) end,
     "bad argument #9 to 'mat3' (a33 must be finite, got nan)", "NaN entry")
   T.fails(function() return mat3{{1, 2, 3}, {4, 5}, {7, 8, 9}} end,
@@ -86,8 +108,12 @@ T.case("errors", function()
   T.fails(function() return m * "x" end,
     "bad argument #2 to 'mat3.__mul' (vec3, mat3 or number expected, got string)", "M * 'x'")
   T.fails(function() return m / 0 end, "division of a mat3 by zero", "M / 0")
-  T.fails(function() m.x = 1 end, "mat3 values are immutable", "write")
-  T.fails(function() return m.foo end, "mat3 has no field 'foo'", "unknown field")
+  T.fails(function() m.x = 1 end, "bad field 'x' of mat3 (matrices are immutable", "write")
+  T.fails(function() return m.foo end, "bad field 'foo' of mat3 (no such field", "unknown field")
+  T.fails(function() return m * 1e308 * 2 end,
+    "bad argument #2 to 'mat3.__mul' (the result is not finite", "overflow")
+  T.fails(function() return mat3.diag(1e-310, 1, 1):inverse() end,
+    "calling 'mat3:inverse' on bad self (the inverse is not finite", "inverse overflows")
   T.fails(function() return mat3.transpose(vec3()) end,
     "bad argument #1 to 'mat3:transpose' (mat3 expected, got vec3)", "wrong self")
 end)
