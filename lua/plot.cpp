@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -53,11 +54,13 @@ std::string short_number(double x) {
 
 bool use_color() { return isatty(STDOUT_FILENO) && std::getenv("NO_COLOR") == nullptr; }
 
+// Tables are read raw (lua_rawlen, lua_rawgeti, lua_rawget): a table's metamethods are not
+// run, so they cannot raise errors of their own from inside plot.lines.
 std::vector<double> read_numbers(lua_State* L, int table, const char* what, int series) {
   std::vector<double> values;
-  const lua_Integer n = luaL_len(L, table);
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, table));
   for (lua_Integer i = 1; i <= n; ++i) {
-    if (lua_geti(L, table, i) != LUA_TNUMBER)
+    if (lua_rawgeti(L, table, i) != LUA_TNUMBER)
       arg_error(L, 1, "series %d: %s[%d] must be a number, got %s", series, what, (int)i,
                 luaL_typename(L, -1));
     const double v = lua_tonumber(L, -1);
@@ -69,46 +72,104 @@ std::vector<double> read_numbers(lua_State* L, int table, const char* what, int 
   return values;
 }
 
-std::string string_field(lua_State* L, int table, const char* name) {
-  const int type = lua_getfield(L, table, name);
-  if (type != LUA_TNIL && type != LUA_TSTRING)
+int raw_field(lua_State* L, int table, const char* name) {
+  lua_pushstring(L, name);
+  return lua_rawget(L, table);
+}
+
+// Field `name` of the table at `table`: a string or absent. `series` > 0 names the series.
+std::string string_field(lua_State* L, int table, const char* name, int series = 0) {
+  const int type = raw_field(L, table, name);
+  if (type != LUA_TNIL && type != LUA_TSTRING) {
+    if (series > 0)
+      arg_error(L, 1, "series %d: field '%s' must be a string, got %s", series, name,
+                luaL_typename(L, -1));
     arg_error(L, 1, "field '%s' must be a string, got %s", name, luaL_typename(L, -1));
+  }
   std::string value = type == LUA_TSTRING ? lua_tostring(L, -1) : "";
   lua_pop(L, 1);
   return value;
 }
 
+// Field `name` of the chart: an integer from `lo` to `hi`, or absent (`fallback`).
+int size_field(lua_State* L, const char* name, int lo, int hi, int fallback) {
+  const int type = raw_field(L, 1, name);
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    return fallback;
+  }
+  if (type != LUA_TNUMBER)
+    arg_error(L, 1, "field '%s' must be a number, got %s", name, luaL_typename(L, -1));
+  const double x = lua_tonumber(L, -1);
+  lua_pop(L, 1);
+  if (!(x >= lo && x <= hi && x == std::floor(x)))  // NaN fails too; checked before any cast
+    arg_error(L, 1, "field '%s' must be an integer from %d to %d, got %s", name, lo, hi,
+              format_number(x).c_str());
+  return static_cast<int>(x);
+}
+
+// The keys of the table at `table` must be in `fields` or, when `count` >= 0, integers 1 to
+// `count` (the series): a misspelt option would otherwise be silently ignored.
+void check_keys(lua_State* L, int table, const char* const* fields, lua_Integer count,
+                int series) {
+  for (lua_pushnil(L); lua_next(L, table) != 0; lua_pop(L, 1)) {
+    bool known = false;
+    if (lua_type(L, -2) == LUA_TSTRING) {
+      for (const char* const* f = fields; *f && !known; ++f)
+        known = std::strcmp(*f, lua_tostring(L, -2)) == 0;
+    } else if (count >= 0 && lua_isinteger(L, -2)) {
+      known = lua_tointeger(L, -2) >= 1 && lua_tointeger(L, -2) <= count;
+    }
+    if (known) continue;
+    std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2)
+                      : lua_type(L, -2) == LUA_TNUMBER
+                          ? format_number(lua_tonumber(L, -2))
+                          : std::string("a ") + luaL_typename(L, -2) + " key";
+    std::string list;
+    for (const char* const* f = fields; *f; ++f) list += std::string(list.empty() ? "" : ", ") + *f;
+    if (series > 0)
+      arg_error(L, 1, "series %d: unknown field '%s' (fields are %s)", series, key.c_str(),
+                list.c_str());
+    arg_error(L, 1, "unknown field '%s' (fields are %s, and the series 1 to %d)", key.c_str(),
+              list.c_str(), (int)count);
+  }
+}
+
+// Where x lies in [lo, hi], as a fraction in [0, 1]. Computed on halves, so that no difference
+// overflows even for a range from -1.8e308 to 1.8e308; span(lo, hi) > 0 (widen) keeps it finite.
+double span(double lo, double hi) { return hi / 2 - lo / 2; }
+double fraction(double x, double lo, double hi) {
+  const double t = (x / 2 - lo / 2) / span(lo, hi);
+  return t >= 0.0 ? std::min(t, 1.0) : 0.0;  // and 0 for a NaN, which cannot happen
+}
+
 Chart read_chart(lua_State* L) {
-  luaL_checktype(L, 1, LUA_TTABLE);
+  if (lua_type(L, 1) != LUA_TTABLE) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
+  const lua_Integer count = static_cast<lua_Integer>(lua_rawlen(L, 1));
+  static const char* const chart_fields[] = {"title", "xlabel", "ylabel", "width", "height", "svg",
+                                             nullptr};
+  check_keys(L, 1, chart_fields, count, 0);
   Chart chart;
   chart.title = string_field(L, 1, "title");
   chart.xlabel = string_field(L, 1, "xlabel");
   chart.ylabel = string_field(L, 1, "ylabel");
   chart.svg = string_field(L, 1, "svg");
-  chart.width = static_cast<int>(field_positive(L, 1, "width", 60, false));
-  chart.height = static_cast<int>(field_positive(L, 1, "height", 15, false));
-  if (chart.width < 10 || chart.width > 400) arg_error(L, 1, "width must be 10 to 400 columns");
-  if (chart.height < 4 || chart.height > 200) arg_error(L, 1, "height must be 4 to 200 rows");
-  const lua_Integer count = luaL_len(L, 1);
+  chart.width = size_field(L, "width", 10, 400, 60);
+  chart.height = size_field(L, "height", 4, 200, 15);
   if (count == 0) arg_error(L, 1, "at least one series {x = {...}, y = {...}} expected");
   for (lua_Integer s = 1; s <= count; ++s) {
-    if (lua_geti(L, 1, s) != LUA_TTABLE)
+    if (lua_rawgeti(L, 1, s) != LUA_TTABLE)
       arg_error(L, 1, "series %d must be a table, got %s", (int)s, luaL_typename(L, -1));
     const int table = lua_gettop(L);
     static const char* const fields[] = {"x", "y", "label", nullptr};
-    for (lua_pushnil(L); lua_next(L, table) != 0; lua_pop(L, 1)) {
-      bool known = false;
-      for (const char* const* f = fields; *f && !known; ++f)
-        known = lua_type(L, -2) == LUA_TSTRING && std::strcmp(*f, lua_tostring(L, -2)) == 0;
-      if (!known) arg_error(L, 1, "series %d: unknown field (fields are x, y, label)", (int)s);
-    }
+    check_keys(L, table, fields, -1, static_cast<int>(s));
     Series series;
-    if (lua_getfield(L, table, "y") != LUA_TTABLE)
+    if (raw_field(L, table, "y") != LUA_TTABLE)
       arg_error(L, 1, "series %d: field 'y' must be a list of numbers", (int)s);
     series.y = read_numbers(L, lua_gettop(L), "y", static_cast<int>(s));
     lua_pop(L, 1);
-    if (lua_getfield(L, table, "x") == LUA_TTABLE) {
+    if (raw_field(L, table, "x") == LUA_TTABLE) {
       series.x = read_numbers(L, lua_gettop(L), "x", static_cast<int>(s));
       if (series.x.size() != series.y.size())
         arg_error(L, 1, "series %d: x has %d values but y has %d", (int)s, (int)series.x.size(),
@@ -120,7 +181,7 @@ Chart read_chart(lua_State* L) {
     }
     lua_pop(L, 1);
     if (series.y.empty()) arg_error(L, 1, "series %d has no points", (int)s);
-    series.label = string_field(L, table, "label");
+    series.label = string_field(L, table, "label", static_cast<int>(s));
     if (series.label.empty()) series.label = "series " + std::to_string(s);
     chart.series.push_back(std::move(series));
     lua_pop(L, 1);
@@ -134,10 +195,10 @@ Chart read_chart(lua_State* L) {
     chart.y_max = std::max(chart.y_max, *std::max_element(s.y.begin(), s.y.end()));
   }
   auto widen = [](double& lo, double& hi) {  // a flat range still gets a visible axis
-    if (hi > lo) return;
-    const double pad = lo == 0.0 ? 1.0 : 0.5 * std::fabs(lo);
-    lo -= pad;
-    hi += pad;
+    if (span(lo, hi) > 0.0) return;
+    const double pad = std::fabs(lo) < 1e-300 ? 1.0 : 0.5 * std::fabs(lo);
+    lo = std::max(lo - pad, -DBL_MAX);  // near ±1.8e308 the padded range stays finite
+    hi = std::min(hi + pad, DBL_MAX);
   };
   widen(chart.x_min, chart.x_max);
   widen(chart.y_min, chart.y_max);
@@ -159,10 +220,10 @@ struct Grid {
 Grid draw(const Chart& chart, int columns, int rows) {
   Grid grid(columns, rows);
   auto to_column = [&](double x) {
-    return int(std::lround((x - chart.x_min) / (chart.x_max - chart.x_min) * (columns - 1)));
+    return int(std::lround(fraction(x, chart.x_min, chart.x_max) * (columns - 1)));
   };
   auto to_row = [&](double y) {  // row 0 at the top
-    return int(std::lround((chart.y_max - y) / (chart.y_max - chart.y_min) * (rows - 1)));
+    return int(std::lround((1.0 - fraction(y, chart.y_min, chart.y_max)) * (rows - 1)));
   };
   for (size_t s = 0; s < chart.series.size(); ++s) {
     const Series& series = chart.series[s];
@@ -268,8 +329,8 @@ std::string xml_escape(const std::string& text) {
 void write_svg(lua_State* L, const Chart& chart) {
   const double W = 720, H = 440, left = 80, right = 20, top = 50, bottom = 80;
   const double pw = W - left - right, ph = H - top - bottom;
-  auto sx = [&](double x) { return left + (x - chart.x_min) / (chart.x_max - chart.x_min) * pw; };
-  auto sy = [&](double y) { return top + (chart.y_max - y) / (chart.y_max - chart.y_min) * ph; };
+  auto sx = [&](double x) { return left + fraction(x, chart.x_min, chart.x_max) * pw; };
+  auto sy = [&](double y) { return top + (1.0 - fraction(y, chart.y_min, chart.y_max)) * ph; };
   static const char* const colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                                        "#17becf"};
   std::FILE* file = std::fopen(chart.svg.c_str(), "w");

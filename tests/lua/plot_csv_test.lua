@@ -30,6 +30,20 @@ T.case("a chart has the requested size, ranges, labels and legend", function()
   assert(out:find("time", 1, true) and out:find("height", 1, true), "axis labels")
 end)
 
+T.case("extreme ranges draw a line, without overflow", function()
+  for _, series in ipairs({
+    {x = {-1.7e308, 1.7e308}, y = {-1.7e308, 1.7e308}},  -- x_max - x_min overflows
+    {x = {1, 2}, y = {1.7e308, 1.7e308}},                -- a flat range padded past 1.8e308
+    {x = {1, 2}, y = {5e-324, 5e-324}},                  -- a flat range of the smallest double
+    {x = {0, 5e-324}, y = {0, 5e-324}},                  -- a range whose half rounds to 0
+  }) do
+    local out = captured(function() plot.lines{series, width = 10, height = 4} end)
+    local dots = 0
+    for _ in out:gmatch("[*\226]") do dots = dots + 1 end
+    assert(dots > 0, "a line is drawn: " .. out)
+  end
+end)
+
 T.case("svg output", function()
   captured(function()
     plot.lines{{x = {0, 1}, y = {0, 1}, label = "a<b"}, {x = {0, 1}, y = {1, 0}}, svg = tmp}
@@ -61,9 +75,23 @@ T.case("errors", function()
   T.fails(function() plot.lines{{x = {1, 2}, y = {1}}} end, "series 1: x has 2 values but y has 1",
     "lengths")
   T.fails(function() plot.lines{{y = {1, 0/0}}} end, "series 1: y[2] is nan", "NaN")
-  T.fails(function() plot.lines{{y = {1}, colour = 1}} end, "series 1: unknown field", "field")
-  T.fails(function() plot.lines{{y = {1}}, width = 2} end, "width must be 10 to 400 columns",
+  T.fails(function() plot.lines{{y = {1}, colour = 1}} end,
+    "bad argument #1 to 'plot.lines' (series 1: unknown field 'colour' (fields are x, y, label))",
+    "series field")
+  T.fails(function() plot.lines{{y = {1}}, titel = "x"} end,
+    "bad argument #1 to 'plot.lines' (unknown field 'titel'", "chart field")
+  T.fails(function() plot.lines{{y = {1}}, width = 2} end,
+    "bad argument #1 to 'plot.lines' (field 'width' must be an integer from 10 to 400, got 2)",
     "width")
+  T.fails(function() plot.lines{{y = {1}}, height = 1e300} end,
+    "bad argument #1 to 'plot.lines' (field 'height' must be an integer from 4 to 200, got 1e+300)",
+    "height")
+  T.fails(function() plot.lines(5) end, "bad argument #1 to 'plot.lines' (table expected, got number)",
+    "not a table")
+  T.fails(function() csv.write(tmp, 5, {"x"}) end,
+    "bad argument #2 to 'csv.write' (table expected, got number)", "columns not a table")
+  T.fails(function() csv.write(tmp, {x = {1, 1/0}}, {"x"}) end,
+    "bad argument #2 to 'csv.write' (column 'x' entry 2 must be finite, got inf)", "inf")
   T.fails(function() csv.write(tmp, {x = {1, 2}, y = {1}}, {"x", "y"}) end,
     "bad argument #2 to 'csv.write' (column 'y' has 1 entries but column 'x' has 2)", "ragged")
   T.fails(function() csv.write(tmp, {x = {1}}, {"x", "z"}) end,
