@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lua/binding.hpp"
+#include "lua/body.hpp"
 #include "lua/modules.hpp"
 
 namespace rigidlab::lua {
@@ -52,6 +53,7 @@ std::string list_functions(lua_State* L, int index) {
 }
 
 // Pushes the value a dotted name ("inertia.solid_box", "vec3:cross") refers to, or nil.
+// Method names resolve through the type's table: vec3.cross is vec3:cross.
 void resolve_name(lua_State* L, const std::string& name) {
   lua_pushglobaltable(L);
   size_t start = 0;
@@ -63,11 +65,26 @@ void resolve_name(lua_State* L, const std::string& name) {
       lua_pushnil(L);
       return;
     }
-    lua_getfield(L, -1, part.c_str());
+    lua_pushlstring(L, part.data(), part.size());
+    lua_rawget(L, -2);  // raw: a table's __index cannot raise an error of its own here
     lua_remove(L, -2);
     if (end == std::string::npos) return;
     start = end + 1;
   }
+}
+
+// The type of the userdata at `index`: rigidlab's math values and bodies by their tags (their
+// metatables may have been replaced through the debug library), others by __name.
+std::string type_name(lua_State* L, int index) {
+  if (test_vec3(L, index) != nullptr) return "vec3";
+  if (test_mat3(L, index) != nullptr) return "mat3";
+  if (test_quat(L, index) != nullptr) return "quat";
+  if (test_body(L, index) != nullptr) return "body";
+  std::string name = luaL_typename(L, index);
+  const int type = luaL_getmetafield(L, index, "__name");  // pushes nothing when absent
+  if (type == LUA_TSTRING) name = lua_tostring(L, -1);
+  if (type != LUA_TNIL) lua_pop(L, 1);
+  return name;
 }
 
 const char* const overview =
@@ -79,9 +96,8 @@ int help(lua_State* L) {
   check_no_extra_args(L, 1);
   if (lua_isnoneornil(L, 1)) {
     std::string text = overview;
-    lua_getglobal(L, "require");
-    lua_pushliteral(L, "rigidlab");
-    lua_call(L, 1, 1);
+    luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);  // works without `require`
+    lua_getfield(L, -1, "rigidlab");
     std::vector<std::string> topics;
     lua_pushnil(L);
     while (lua_next(L, -2) != 0) {
@@ -101,8 +117,11 @@ int help(lua_State* L) {
       arg_error(L, 1, "no topic '%s' (help() lists the topics)", name.c_str());
     lua_replace(L, 1);
   }
-  if (lua_type(L, 1) == LUA_TUSERDATA && luaL_getmetafield(L, 1, "__name") == LUA_TSTRING) {
-    resolve_name(L, lua_tostring(L, -1));  // a value: the help of its type
+  if (lua_type(L, 1) == LUA_TUSERDATA) {
+    const std::string type = type_name(L, 1);  // a value: the help of its type
+    resolve_name(L, type);
+    if (find_entry(L, -1) == nullptr)
+      arg_error(L, 1, "no help for a %s value (help() lists the topics)", type.c_str());
     lua_replace(L, 1);
   }
   const Entry* entry = find_entry(L, 1);
@@ -113,7 +132,8 @@ int help(lua_State* L) {
     if (!functions.empty()) text += (text.empty() ? "" : "\n") + functions;
     if (!text.empty() && text.back() == '\n') text.pop_back();
   }
-  if (text.empty()) arg_error(L, 1, "no help for this %s value", luaL_typename(L, 1));
+  if (text.empty())
+    arg_error(L, 1, "no help for a %s value (help() lists the topics)", luaL_typename(L, 1));
   print_text(L, text);
   return 0;
 }

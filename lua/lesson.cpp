@@ -29,6 +29,17 @@ LessonTally& check_context(lua_State* L, int arg) {
   return *tally;
 }
 
+// luaL_checkstring and luaL_checkany name the function as Lua saw it ('show'); these name it
+// as rigidlab documents it ('ctx:show').
+const char* check_text(lua_State* L, int arg) {
+  if (!lua_isstring(L, arg)) type_error(L, arg, "string");
+  return lua_tostring(L, arg);
+}
+
+void check_value(lua_State* L, int arg) {
+  if (lua_isnone(L, arg)) arg_error(L, arg, "value expected");
+}
+
 // The numbers of a value that ctx:expect can compare: a number, vec3, quat, mat3 or a table of
 // numbers. Returns false for anything else.
 bool components(lua_State* L, int index, std::vector<double>& out, std::string& kind) {
@@ -47,9 +58,9 @@ bool components(lua_State* L, int index, std::vector<double>& out, std::string& 
     for (int k = 0; k < 9; ++k) out.push_back((*m)(k / 3, k % 3));
   } else if (lua_type(L, index) == LUA_TTABLE) {
     kind = "table";
-    const lua_Integer n = luaL_len(L, index);
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, index));
     for (lua_Integer i = 1; i <= n; ++i) {
-      const bool is_number = lua_geti(L, index, i) == LUA_TNUMBER;
+      const bool is_number = lua_rawgeti(L, index, i) == LUA_TNUMBER;
       out.push_back(lua_tonumber(L, -1));
       lua_pop(L, 1);
       if (!is_number) return false;
@@ -89,8 +100,8 @@ std::string describe_tolerance(double absolute, double relative) {
 // ctx:show(label, value)
 int context_show(lua_State* L) {
   LessonTally& tally = check_context(L, 1);
-  const char* label = luaL_checkstring(L, 2);
-  luaL_checkany(L, 3);
+  const char* label = check_text(L, 2);
+  check_value(L, 3);
   check_no_extra_args(L, 3);
   write(tally, std::string("  ") + label + " = " + format_value(L, 3, "    ") + "\n");
   return 0;
@@ -99,9 +110,9 @@ int context_show(lua_State* L) {
 // ctx:expect(label, got, want [, tol]) -> true when within tolerance
 int context_expect(lua_State* L) {
   LessonTally& tally = check_context(L, 1);
-  const char* label = luaL_checkstring(L, 2);
-  luaL_checkany(L, 3);
-  luaL_checkany(L, 4);
+  const char* label = check_text(L, 2);
+  check_value(L, 3);
+  check_value(L, 4);
   check_no_extra_args(L, 5);
   double absolute, relative;
   read_tolerance(L, 5, absolute, relative);
@@ -142,24 +153,24 @@ int context_expect(lua_State* L) {
 // of numbers or strings.
 int context_table(lua_State* L) {
   LessonTally& tally = check_context(L, 1);
-  luaL_checktype(L, 2, LUA_TTABLE);
-  luaL_checktype(L, 3, LUA_TTABLE);
+  if (lua_type(L, 2) != LUA_TTABLE) type_error(L, 2, "table");
+  if (lua_type(L, 3) != LUA_TTABLE) type_error(L, 3, "table");
   check_no_extra_args(L, 3);
-  const int columns = static_cast<int>(luaL_len(L, 2));
+  const int columns = static_cast<int>(lua_rawlen(L, 2));
   if (columns < 1) arg_error(L, 2, "at least one column heading expected");
   std::vector<std::vector<std::string>> cells(1);
   for (int j = 1; j <= columns; ++j) {
-    lua_geti(L, 2, j);
+    lua_rawgeti(L, 2, j);
     cells[0].push_back(luaL_tolstring(L, -1, nullptr));
     lua_pop(L, 2);
   }
-  const lua_Integer rows = luaL_len(L, 3);
+  const lua_Integer rows = static_cast<lua_Integer>(lua_rawlen(L, 3));
   for (lua_Integer i = 1; i <= rows; ++i) {
-    if (lua_geti(L, 3, i) != LUA_TTABLE)
+    if (lua_rawgeti(L, 3, i) != LUA_TTABLE)
       arg_error(L, 3, "row %d must be a table, got %s", (int)i, luaL_typename(L, -1));
     std::vector<std::string> row;
     for (int j = 1; j <= columns; ++j) {
-      lua_geti(L, -1, j);
+      lua_rawgeti(L, -1, j);
       row.push_back(lua_isnil(L, -1) ? "" : format_value(L, lua_gettop(L), ""));
       lua_pop(L, 1);
     }
@@ -193,7 +204,7 @@ int context_table(lua_State* L) {
 // ctx:say(text): a line of explanation printed between values.
 int context_say(lua_State* L) {
   LessonTally& tally = check_context(L, 1);
-  const char* text = luaL_checkstring(L, 2);
+  const char* text = check_text(L, 2);
   check_no_extra_args(L, 2);
   write(tally, std::string("  ") + text + "\n");
   return 0;
@@ -240,7 +251,7 @@ void check_step(lua_State* L, int arg, int number) {
 
 // lesson{id =, title =, source =, steps = {...}} -> the same table, validated.
 int lesson_new(lua_State* L) {
-  luaL_checktype(L, 1, LUA_TTABLE);
+  if (lua_type(L, 1) != LUA_TTABLE) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
   static const char* const allowed[] = {"id", "title", "source", "steps", nullptr};
   check_fields(L, 1, allowed);
@@ -254,11 +265,11 @@ int lesson_new(lua_State* L) {
     if (!((*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || *c == '-'))
       arg_error(L, 1, "field 'id' may hold only a-z, 0-9 and '-', got '%s'", lua_tostring(L, -1));
   lua_pop(L, 1);
-  if (lua_getfield(L, 1, "steps") != LUA_TTABLE || luaL_len(L, -1) == 0)
+  if (lua_getfield(L, 1, "steps") != LUA_TTABLE || lua_rawlen(L, -1) == 0)
     arg_error(L, 1, "field 'steps' must be a non-empty list of steps");
-  const lua_Integer count = luaL_len(L, -1);
+  const lua_Integer count = static_cast<lua_Integer>(lua_rawlen(L, -1));
   for (lua_Integer i = 1; i <= count; ++i) {
-    lua_geti(L, -1, i);
+    lua_rawgeti(L, -1, i);
     check_step(L, 1, static_cast<int>(i));
     lua_pop(L, 1);
   }
@@ -338,9 +349,9 @@ std::string format_value(lua_State* L, int index, const std::string& indent) {
   }
   if (lua_type(L, index) == LUA_TTABLE) {
     std::string text = "{";
-    const lua_Integer n = luaL_len(L, index);
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, index));
     for (lua_Integer i = 1; i <= n; ++i) {
-      lua_geti(L, index, i);
+      lua_rawgeti(L, index, i);
       if (i > 1) text += ", ";
       if (lua_type(L, -1) == LUA_TNUMBER) {
         text += format_value(L, -1, "");

@@ -39,8 +39,10 @@ end)
 T.case("unknown topics", function()
   T.fails(function() help("nope") end,
     "bad argument #1 to 'help' (no topic 'nope' (help() lists the topics))", "unknown name")
-  T.fails(function() help(42) end, "bad argument #1 to 'help' (no help for this number value)",
-    "a number")
+  T.fails(function() help(42) end,
+    "bad argument #1 to 'help' (no help for a number value (help() lists the topics))", "a number")
+  T.fails(function() help(io.stdout) end, "bad argument #1 to 'help' (no help for a FILE* value",
+    "a userdata of another library")
 end)
 
 T.finish()
