@@ -55,6 +55,7 @@ std::size_t ContactSolver::correct_positions(std::vector<Body>& bodies) {
     return std::clamp(settings.baumgarte * (separation + slop), -settings.max_correction, 0.0);
   };
   for (int sweep = 0; sweep < settings.position_iterations; ++sweep) {
+    if (poll != nullptr) poll->tick(constraints_.size());
     double min_separation = 0.0;
     for_each_manifold([&](std::size_t begin, std::size_t end) {
       Vec3 pa, pb;

@@ -178,6 +178,7 @@ void ContactSolver::apply_restitution() {
       seed_manifold(begin, end, true);
   });
   for (int sweep = 0; sweep < settings.iterations; ++sweep) {
+    if (poll != nullptr) poll->tick(constraints_.size());
     double largest_change = 0.0;
     for (Constraint& c : constraints_) {
       SolverBody& a = solver_bodies_[c.slot_a];
@@ -241,6 +242,7 @@ std::size_t ContactSolver::solve_velocities(std::vector<Body>& bodies,
   // Sweeps alternate direction (symmetric Gauss-Seidel), so no point of a symmetric contact,
   // like the four corners of a box landing flat, is always solved first.
   for (int sweep = 0; sweep < settings.iterations; ++sweep) {
+    if (poll != nullptr) poll->tick(constraints_.size());
     if (sweep % 2 == 0)
       for (Constraint& c : constraints_) solve_point(c);
     else

@@ -98,6 +98,7 @@
 #include "engine/contacts.hpp"
 #include "engine/forces.hpp"
 #include "engine/plane.hpp"
+#include "engine/step_poll.hpp"
 
 namespace rigidlab {
 
@@ -154,6 +155,9 @@ inline bool touched(const ContactInfo& c) { return c.depth >= 0.0 || c.normal_im
 class ContactSolver {
  public:
   ContactSettings settings;
+  // World::step's stop check, ticked once per sweep with the points solved (null outside a
+  // step); what it throws leaves the solver consistent for the world's undo.
+  StepPoll* poll = nullptr;
 
   // Finds the contacts at the bodies' current poses, solves their velocities and applies the
   // change of velocity to the bodies (static bodies and planes never move). Δt in s. Returns

@@ -74,6 +74,7 @@ class World::StepGuard {
   }
   ~StepGuard() {
     world_.store_->stepping_ = false;
+    world_.contacts_.poll = nullptr;
     if (committed_) return;
     world_.time_ = time_;
     world_.contacts_.restore();
@@ -231,7 +232,7 @@ std::size_t World::integrate(double t, double dt, BodyState* save_to) {
   return bad;
 }
 
-void World::step(double dt, long count, const std::function<void()>& between_steps) {
+void World::step(double dt, long count, const std::function<void()>& poll) {
   if (!std::isfinite(dt) || !(dt > 0.0))
     throw std::invalid_argument("dt must be finite and > 0, got " + format_number(dt));
   if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
@@ -241,6 +242,8 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
   // first; without either, that pass writes it.
   const bool snapshot_in_pass = !has_force_elements() && !has_contacts();
   StepGuard guard(*this, !snapshot_in_pass);
+  StepPoll poller(poll);
+  contacts_.poll = &poller;  // reset by the guard
   const double call_start = time_;
   const double h = dt / substeps_;
   std::vector<Body>& bodies = this->bodies();
@@ -260,10 +263,10 @@ void World::step(double dt, long count, const std::function<void()>& between_ste
           integrate(t + s * h, h, first_pass && snapshot_in_pass ? snapshot_.data() : nullptr);
       if (first_pass && snapshot_in_pass) guard.snapshot_taken();
       if (bad != all_finite) throw_non_finite(bad, t, t + dt, call_start);
+      poller.tick(bodies.size() + 1);
     }
     t += dt;
     time_ = t;
-    if (between_steps && k + 1 < count) between_steps();
   }
   guard.commit();
 }

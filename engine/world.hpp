@@ -127,13 +127,15 @@ class World {
   // Advances `count` steps of dt (s, finite and > 0), each in substeps() equal substeps with
   // the chosen integrator. Forces applied before the call act during the whole first step
   // (all its substeps and stages) and are then cleared, as if step(dt) were called `count`
-  // times. `between_steps`, if given, is called after every step but the last (the Lua
-  // binding polls for Ctrl-C there). Throws StepError if any body's state would become
-  // non-finite, std::logic_error when called during a step (from a force callback), and
-  // propagates what a callback throws; after any failure the bodies, their accumulators and
+  // times. `poll`, if given, is called about every millisecond of work at most (between
+  // substeps and between sweeps of the contact solver; engine/step_poll.hpp): the embedding
+  // program stops the step by throwing from it (Ctrl-C, a time limit). Throws StepError if
+  // any body's state would become non-finite, std::logic_error when called during a step
+  // (from a force callback), and propagates what a callback or the poll throws; after any
+  // failure the bodies, their accumulators and
   // the time are exactly as before the call. While stepping, bodies hold intermediate (stage)
   // states and store().stepping() is true.
-  void step(double dt, long count = 1, const std::function<void()>& between_steps = {});
+  void step(double dt, long count = 1, const std::function<void()>& poll = {});
   double time() const { return time_; }  // s; during a step, the time of the current stage
   bool stepping() const { return store_->stepping_; }
 

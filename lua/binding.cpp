@@ -298,11 +298,13 @@ void set_stop_check(lua_State* L, StopCheck check, void* data) {
   lua_rawsetp(L, LUA_REGISTRYINDEX, &stop_check_key);
 }
 
-void check_stop(lua_State* L) {
+StopPoller::StopPoller(lua_State* L) : L_(L) {
   lua_rawgetp(L, LUA_REGISTRYINDEX, &stop_check_key);
-  const auto* entry = static_cast<const StopCheckEntry*>(lua_touserdata(L, -1));
+  if (const auto* entry = static_cast<const StopCheckEntry*>(lua_touserdata(L, -1))) {
+    check_ = entry->check;
+    data_ = entry->data;
+  }
   lua_pop(L, 1);
-  if (entry != nullptr && entry->check != nullptr) entry->check(L, entry->data);
 }
 
 }  // namespace rigidlab::lua

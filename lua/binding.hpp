@@ -134,14 +134,27 @@ double field_finite(lua_State* L, int arg, const char* name, double fallback, bo
 double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required);
 Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required);
 
-// Long-running bindings (w:step(dt, n), motion.simulate, ...) call check_stop between
-// iterations, because a Lua hook cannot interrupt a C loop. The embedding program (the CLI)
-// installs a StopCheck that raises a Lua error (luaL_error) when the user pressed Ctrl-C or a
-// time limit passed; without one, check_stop does nothing. Stop at a step boundary, so the
-// objects are consistent after the error.
+// Long C loops (the engine's, in w:step) poll a stop check, because a Lua hook cannot
+// interrupt C code. The embedding program (the CLI) installs a StopCheck that raises a Lua
+// error (luaL_error) when the user pressed Ctrl-C or a time limit passed; loops call it often,
+// so it must be cheap (read a flag). Without one, nothing happens. A loop must leave its
+// objects consistent when the check raises (World::step undoes the step).
 using StopCheck = void (*)(lua_State* L, void* data);
 void set_stop_check(lua_State* L, StopCheck check, void* data);
-void check_stop(lua_State* L);
+
+// The state's stop check, looked up once for a loop: each poll() is one indirect call.
+class StopPoller {
+ public:
+  explicit StopPoller(lua_State* L);
+  void poll() const {
+    if (check_ != nullptr) check_(L_, data_);
+  }
+
+ private:
+  lua_State* L_;
+  StopCheck check_ = nullptr;
+  void* data_ = nullptr;
+};
 
 // Formats a number the way Lua's tostring does ("%.14g"), nan/inf/-inf for the non-finite
 // (engine/format.hpp: one formatter for engine and binding messages).

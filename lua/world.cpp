@@ -25,8 +25,6 @@ constexpr int bodies_slot = 1;
 constexpr int callbacks_slot = 2;
 // w:step(dt, n): n is bounded so a typo cannot start a run of years; long runs can be split.
 constexpr lua_Integer max_steps_per_call = 100'000'000;
-// Body-steps between two polls of the Lua hooks (Ctrl-C, the lesson checker's limits).
-constexpr std::size_t poll_interval = 4096;
 
 struct LuaWorld {
   World world;
@@ -474,17 +472,10 @@ int world_step(lua_State* L) {
   if (w.world.stepping())
     function_error(L, "cannot step the world from inside its own step (a force callback)");
   lua_settop(L, 1);
-  lua_pushvalue(L, lua_upvalueindex(1));  // the poll function, index 2
-  // Run the (empty) poll function every few thousand body-steps: calling into Lua lets the
-  // hooks of Ctrl-C and of the lesson checker's time limit stop a long C loop.
-  const std::size_t steps_per_poll = std::max<std::size_t>(1, poll_interval / (w.world.bodies().size() + 1));
-  std::size_t since_poll = 0;
-  auto poll = [&] {
-    if (++since_poll < steps_per_poll) return;
-    since_poll = 0;
-    lua_pushvalue(L, 2);
-    lua_call(L, 0, 0);
-  };
+  // The engine polls the stop check (Ctrl-C, a time limit) inside its long loops: a step of
+  // any size can be stopped, and is then undone.
+  const StopPoller stop(L);
+  const std::function<void()> poll = [&stop] { stop.poll(); };
   RunningState running(w, L);
   std::string message;
   try {
@@ -697,7 +688,6 @@ const Entry index_entry[] = {
     {"__index", world_index, "world.__index", "w.time, w:method()", "Fields and methods."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
-// w:step takes the poll function as its upvalue.
 const Entry step_entry[] = {
     {"step", world_step, "world:step", "w:step(dt [, n])",
      "Advances the world by n steps (default 1) of dt seconds, each in `substeps` substeps,\n"
@@ -728,12 +718,10 @@ const Entry call_entry[] = {
      "angular_momentum."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
-// Registers the methods (w:step with the poll function) into the table at `table_index`.
+// Registers the methods into the table at `table_index`.
 void register_methods(lua_State* L, int table_index) {
-  table_index = lua_absindex(L, table_index);
   register_entries(L, table_index, methods);
-  if (luaL_loadbufferx(L, "return", 6, "=(world:step poll)", "t") != LUA_OK) lua_error(L);
-  register_entries(L, table_index, step_entry, 1);
+  register_entries(L, table_index, step_entry);
 }
 
 }  // namespace

@@ -2,34 +2,18 @@
 // reach the debug library, and keeps the harmless parts.
 #include "lua/sandbox.hpp"
 
-#include <gtest/gtest.h>
-
-#include <cstring>
 #include <string>
 
-#include "lua/rigidlab.hpp"
+#include "lua_fixture.hpp"
 
 namespace {
 
-class Sandbox : public ::testing::Test {
+class Sandbox : public LuaFixture {
  protected:
   void SetUp() override {
-    L = luaL_newstate();
-    rigidlab::lua::open_all(L);
+    LuaFixture::SetUp();
     rigidlab::lua::apply_sandbox(L);
   }
-  void TearDown() override { lua_close(L); }
-  // Runs code; returns "" on success or the error message.
-  std::string run(const char* code) {
-    if (luaL_loadbufferx(L, code, std::strlen(code), "test", "t") != LUA_OK ||
-        lua_pcall(L, 0, 0, 0) != LUA_OK) {
-      std::string message = lua_tostring(L, -1);
-      lua_pop(L, 1);
-      return message;
-    }
-    return "";
-  }
-  lua_State* L = nullptr;
 };
 
 TEST_F(Sandbox, RemovesFileSystemAndNativeCode) {

@@ -350,14 +350,12 @@ TEST(Step, FailureInALaterStepUndoesTheWholeCall) {
   w.add(b);
   apply_force(w.bodies()[0], Vec3(0, 1, 0));
   const Body before = w.bodies()[0];
-  int calls = 0;
   try {
-    w.step(1.0, 100, [&calls] { ++calls; });
+    w.step(1.0, 100);
     ADD_FAILURE() << "no error";
   } catch (const StepError& e) {
     EXPECT_EQ(e.body_index, 0u);
     EXPECT_GT(e.time, 0.5);  // v grows by 1e305 per step: x overflows after a few steps
-    EXPECT_EQ(calls, static_cast<int>(e.time));
   }
   expect_same_state(w.bodies()[0], before);
   EXPECT_EQ(w.time(), 0.0);
