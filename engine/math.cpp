@@ -32,38 +32,29 @@ SymmetricEigen symmetric_eigen(const Mat3& symmetric) {
 
 namespace {
 
-// Sums of squares between these are computed without harm (well inside DBL_MIN .. DBL_MAX, so
-// no component's square overflowed and the ones that underflowed do not matter).
-constexpr double smallest_safe_squares = 1e-280;
-constexpr double largest_safe_squares = 1e280;
-
-bool safe_squares(double squares) {
-  return squares >= smallest_safe_squares && squares <= largest_safe_squares;
-}
-
+// The slow paths: divide by the largest |component| first, so the squares are of numbers in
+// [0, 1] with at least one equal to 1.
 template <class V>
-double stable_norm_of(const V& v) {
-  const double squares = v.squaredNorm();
-  if (safe_squares(squares)) return std::sqrt(squares);
+double norm_by_largest(const V& v) {
   const double scale = v.cwiseAbs().maxCoeff();
   if (!(scale > 0.0) || !std::isfinite(scale)) return scale;  // 0, inf or NaN as they are
   return scale * (v / scale).norm();
 }
 
 template <class V>
-V unit_of(const V& v) {
-  const double squares = v.squaredNorm();
-  if (safe_squares(squares)) return v / std::sqrt(squares);
+V unit_by_largest(const V& v) {
   const V scaled = v / v.cwiseAbs().maxCoeff();  // largest |component| exactly 1
   return scaled / scaled.norm();
 }
 
 }  // namespace
 
-double stable_norm(const Vec3& v) { return stable_norm_of(v); }
-double stable_norm(const Quat& q) { return stable_norm_of(q.coeffs()); }
-Vec3 unit(const Vec3& v) { return unit_of(v); }
-Quat unit(const Quat& q) { return Quat(unit_of(Eigen::Vector4d(q.coeffs()))); }
+namespace detail {
+double rescaled_norm(const Vec3& v) { return norm_by_largest(v); }
+double rescaled_norm(const Quat& q) { return norm_by_largest(Eigen::Vector4d(q.coeffs())); }
+Vec3 rescaled_unit(const Vec3& v) { return unit_by_largest(v); }
+Quat rescaled_unit(const Quat& q) { return Quat(unit_by_largest(Eigen::Vector4d(q.coeffs()))); }
+}  // namespace detail
 
 Quat quat_from_axis_angle(const Vec3& axis, double angle) {
   if (!is_finite(axis) || is_zero(axis))

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace rigidlab {
 
@@ -34,13 +35,37 @@ SymmetricEigen symmetric_eigen(const Mat3& symmetric);
 // these divide by the largest |component| first, as LAPACK's dnrm2 and Eigen's stableNorm do
 // (Blue, "A Portable Fortran Program to Find the Euclidean Norm of a Vector", ACM TOMS 4(1),
 // 1978); otherwise they compute exactly what Eigen's norm() and normalized() compute.
-// Every normalisation in the engine and the bindings goes through these.
-double stable_norm(const Vec3& v);
-double stable_norm(const Quat& q);  // of the four coefficients
+// Every normalisation in the engine and the bindings goes through these. Inline, with the
+// rescaling out of line: the integrators normalise every body's quaternion at every stage.
+namespace detail {
+// Sums of squares in this range are computed without harm (well inside DBL_MIN .. DBL_MAX, so
+// no component's square overflowed and the ones that underflowed do not matter).
+inline bool safe_squares(double squares) { return squares >= 1e-280 && squares <= 1e280; }
+double rescaled_norm(const Vec3& v);
+double rescaled_norm(const Quat& q);
+Vec3 rescaled_unit(const Vec3& v);
+Quat rescaled_unit(const Quat& q);
+}  // namespace detail
+
+inline double stable_norm(const Vec3& v) {
+  const double squares = v.squaredNorm();
+  return detail::safe_squares(squares) ? std::sqrt(squares) : detail::rescaled_norm(v);
+}
+inline double stable_norm(const Quat& q) {  // of the four coefficients
+  const double squares = q.squaredNorm();
+  return detail::safe_squares(squares) ? std::sqrt(squares) : detail::rescaled_norm(q);
+}
 // v / |v|. v must be finite and non-zero (test with is_finite and is_zero first); otherwise
 // the result is not finite.
-Vec3 unit(const Vec3& v);
-Quat unit(const Quat& q);
+inline Vec3 unit(const Vec3& v) {
+  const double squares = v.squaredNorm();
+  return detail::safe_squares(squares) ? Vec3(v / std::sqrt(squares)) : detail::rescaled_unit(v);
+}
+inline Quat unit(const Quat& q) {
+  const double squares = q.squaredNorm();
+  return detail::safe_squares(squares) ? Quat(q.coeffs() / std::sqrt(squares))
+                                       : detail::rescaled_unit(q);
+}
 
 // Rotation of `angle` radians about `axis` (any non-zero length). Throws std::invalid_argument
 // for a zero or non-finite axis.
