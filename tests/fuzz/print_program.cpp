@@ -1,10 +1,11 @@
-// Prints the Lua program a fuzzer input stands for: print_program FILE > regression.lua
+// Prints the Lua program a fuzzer input stands for: fuzz_print_program FILE > program.lua
+// (to read a finding; the input itself is what tests/fuzz/regressions keeps).
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <string>
 
-#include "tests/fuzz/program_generator.hpp"
+#include "tests/fuzz/harness.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -13,11 +14,8 @@ int main(int argc, char** argv) {
   }
   std::ifstream file(argv[1], std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) return 0;
-  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  const std::string program = data[0] % 4 == 0
-                                  ? bytes.substr(1)
-                                  : rigidlab::fuzz::generate_program(data + 1, bytes.size() - 1);
+  const std::string program = rigidlab::fuzz::program_for(
+      reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   std::fwrite(program.data(), 1, program.size(), stdout);
   return 0;
 }

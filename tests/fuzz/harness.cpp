@@ -1,0 +1,164 @@
+#include "tests/fuzz/harness.hpp"
+
+#include <lua.hpp>
+
+#include <chrono>
+#include <cstdlib>
+
+#include "lua/binding.hpp"
+#include "lua/rigidlab.hpp"
+#include "lua/sandbox.hpp"
+#include "tests/fuzz/program_generator.hpp"
+
+namespace rigidlab::fuzz {
+namespace {
+
+constexpr int hook_interval = 1000;       // VM instructions between two checks of the limits
+constexpr std::size_t max_subject = 256;  // bytes, for Lua's pattern functions
+constexpr int max_quantifiers = 2;
+
+// The limits of one run, reached from the allocator, the hook and the stop check.
+struct Run {
+  RunLimits limits;
+  std::size_t used_bytes = 0;
+  long long instructions = 0;
+  int stop_checks = 0;
+  std::chrono::steady_clock::time_point deadline;
+};
+
+Run& run_of(lua_State* L) {
+  void* run = nullptr;
+  lua_getallocf(L, &run);
+  return *static_cast<Run*>(run);
+}
+
+// Refuses only what would pass the cap, so Lua's emergency collection runs first.
+void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_size) {
+  Run& run = *static_cast<Run*>(self);
+  const std::size_t old_bytes = block != nullptr ? old_size : 0;  // else old_size is a type tag
+  if (new_size == 0) {
+    std::free(block);
+    run.used_bytes -= old_bytes;
+    return nullptr;
+  }
+  if (new_size > old_bytes && run.used_bytes - old_bytes + new_size > run.limits.max_memory_bytes)
+    return nullptr;
+  void* result = std::realloc(block, new_size);
+  if (result != nullptr) run.used_bytes = run.used_bytes - old_bytes + new_size;
+  return result;
+}
+
+void check_time(lua_State* L, Run& run) {
+  if (std::chrono::steady_clock::now() > run.deadline)
+    luaL_error(L, "fuzz harness: the time limit (%f s) passed", run.limits.timeout_seconds);
+}
+
+void hook(lua_State* L, lua_Debug*) {
+  Run& run = run_of(L);
+  run.instructions += hook_interval;
+  if (run.instructions > run.limits.max_instructions)
+    luaL_error(L, "fuzz harness: the instruction limit (%I) passed",
+               static_cast<lua_Integer>(run.limits.max_instructions));
+  check_time(L, run);
+}
+
+// The engine's long loops (w:step) poll this; reading the clock every 64th call keeps it cheap.
+void stop_check(lua_State* L, void* self) {
+  Run& run = *static_cast<Run*>(self);
+  if (++run.stop_checks % 64 == 0) check_time(L, run);
+}
+
+int count_quantifiers(const char* pattern, std::size_t length) {
+  int count = 0;
+  for (std::size_t i = 0; i < length; ++i) {
+    if (pattern[i] == '%') ++i;  // an escaped character is literal
+    else if (pattern[i] == '*' || pattern[i] == '+' || pattern[i] == '-' || pattern[i] == '?')
+      ++count;  // inside a set [...] these are literal: counting them only refuses more
+  }
+  return count;
+}
+
+// string.find/match/gmatch/gsub with the bounds of harness.hpp; upvalue 1 is the original,
+// upvalue 2 is true for find (whose 4th argument asks for a plain, linear search).
+int bounded_pattern_call(lua_State* L) {
+  std::size_t subject_length = 0, pattern_length = 0;
+  const bool plain = lua_toboolean(L, lua_upvalueindex(2)) && lua_toboolean(L, 4);
+  if (!plain && lua_type(L, 1) == LUA_TSTRING && lua_type(L, 2) == LUA_TSTRING) {
+    lua_tolstring(L, 1, &subject_length);
+    const char* pattern = lua_tolstring(L, 2, &pattern_length);
+    const int quantifiers = count_quantifiers(pattern, pattern_length);
+    if (subject_length > max_subject || quantifiers > max_quantifiers)
+      return luaL_error(L, "fuzz harness: pattern search refused (subject of %d bytes, %d "
+                           "quantifiers; at most %d and %d)", static_cast<int>(subject_length),
+                        quantifiers, static_cast<int>(max_subject), max_quantifiers);
+  }
+  const int args = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, args, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+void bound_patterns(lua_State* L) {
+  lua_getglobal(L, "string");
+  for (const char* name : {"find", "match", "gmatch", "gsub"}) {
+    lua_getfield(L, -1, name);
+    lua_pushboolean(L, name[0] == 'f');
+    lua_pushcclosure(L, bounded_pattern_call, 2);
+    lua_setfield(L, -2, name);
+  }
+  lua_pop(L, 1);
+}
+
+// Opens rigidlab as the CLI does, sandboxed (generated programs write no files), with a silent
+// print (plot.lines and help print through it) and bounded pattern functions.
+int open_state(lua_State* L) {
+  lua::open_all(L);
+  lua::apply_sandbox(L);
+  lua_pushcfunction(L, [](lua_State*) { return 0; });
+  lua_setglobal(L, "print");
+  bound_patterns(L);
+  return 0;
+}
+
+std::string first_line(lua_State* L) {
+  const char* message = lua_tostring(L, -1);
+  if (message == nullptr) return "(error object is not a string)";
+  const std::string text = message;
+  return text.substr(0, text.find('\n'));
+}
+
+}  // namespace
+
+std::string program_for(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return "";
+  if (data[0] % 4 == 0) return std::string(reinterpret_cast<const char*>(data + 1), size - 1);
+  return generate_program(data + 1, size - 1);
+}
+
+std::string run_input(const std::uint8_t* data, std::size_t size, const RunLimits& limits) {
+  if (size == 0) return "";
+  Run run;
+  run.limits = limits;
+  run.deadline = std::chrono::steady_clock::now() +
+                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                     std::chrono::duration<double>(limits.timeout_seconds));
+  lua_State* L = lua_newstate(allocate, &run);
+  if (L == nullptr) return "cannot create a state";
+  lua_sethook(L, hook, LUA_MASKCOUNT, hook_interval);
+  lua::set_stop_check(L, stop_check, &run);
+  std::string result;
+  lua_pushcfunction(L, open_state);
+  if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
+    result = "cannot open the libraries: " + first_line(L);
+  } else {
+    const std::string program = program_for(data, size);
+    if (luaL_loadbufferx(L, program.data(), program.size(), "=fuzz", "t") != LUA_OK ||
+        lua_pcall(L, 0, 0, 0) != LUA_OK)
+      result = first_line(L);
+  }
+  lua_close(L);
+  return result;
+}
+
+}  // namespace rigidlab::fuzz

@@ -1,0 +1,2 @@
+ local s = ("a"):rep(40)
+return s:find(("a*"):rep(20) .. "b")
