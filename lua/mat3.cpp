@@ -339,7 +339,8 @@ const Entry methods[] = {
     {"col", mat3_col, "mat3:col", "M:col(j) -> vec3", "Column j as a vec3."},
     {"transpose", mat3_transpose, "mat3:transpose", "M:transpose() -> mat3", "Mᵀ."},
     {"inverse", mat3_inverse, "mat3:inverse", "M:inverse() -> mat3",
-     "M⁻¹. Error if M is singular (decided by full-pivot LU, relative to M's scale)."},
+     "M⁻¹. Error if M is singular: decided by full-pivot LU on M with its rows and columns\n"
+     "balanced by powers of two, so a matrix is not singular for its scale alone."},
     {"det", mat3_det, "mat3:det", "M:det() -> number", "Determinant."},
     {"trace", mat3_trace, "mat3:trace", "M:trace() -> number", "Sum of the diagonal."},
     {"eigen", mat3_eigen, "mat3:eigen", "M:eigen() -> values, axes",
