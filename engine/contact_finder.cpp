@@ -33,6 +33,21 @@ double impact_velocity(double approach, double acceleration, double separation, 
   return t >= 0.0 && t <= dt * (1.0 + 1e-9) ? w : 0.0;
 }
 
+// The smallest extent of a shape (m): a sphere's diameter, a box's shortest side.
+double smallest_dimension(const Shape& shape) {
+  switch (shape.kind) {
+    case ShapeKind::sphere:
+      return 2.0 * shape.radius;
+    case ShapeKind::box:
+      return 2.0 * shape.half_extents.minCoeff();
+    case ShapeKind::none:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+constexpr double slop_fraction = 0.01;
+
 }  // namespace
 
 std::uint32_t ContactSolver::slot_for(const std::vector<Body>& bodies, std::size_t index,
@@ -203,6 +218,9 @@ void ContactSolver::add_manifold(const std::vector<Body>& bodies, const Manifold
   const double friction_a = body_a ? body_a->friction : plane_material->friction;
   const SolverBody& sa = solver_bodies_[slot_a];
   const SolverBody& sb = solver_bodies_[slot_b];
+  const double size_a = body_a ? smallest_dimension(body_a->shape)
+                               : std::numeric_limits<double>::infinity();
+  const double size_b = smallest_dimension(body_b.shape);
   manifold_begin_.push_back(constraints_.size());
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& p = m.points[k];
@@ -248,6 +266,9 @@ void ContactSolver::add_manifold(const std::vector<Body>& bodies, const Manifold
     c.acceleration = c.normal.dot(sb.acceleration + sb.angular_acceleration.cross(c.r_b) -
                                   sa.acceleration - sa.angular_acceleration.cross(c.r_a));
     c.impact = impact_velocity(c.approach, c.acceleration, c.separation, dt);
+    // The overlap position correction leaves alone: linear_slop, but at most 1 % of the
+    // smaller body (a 0.1 m cube would otherwise rest 5 mm, 5 % of its height, deep).
+    c.slop = std::min(settings.linear_slop, slop_fraction * std::min(size_a, size_b));
     c.restitution = mix_restitution(restitution_a, body_b.restitution);
     c.friction = mix_friction(friction_a, body_b.friction);
     constraints_.push_back(c);

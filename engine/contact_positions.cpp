@@ -46,17 +46,17 @@ void ContactSolver::move_apart(std::vector<Body>& bodies, const Constraint& c, c
 }
 
 // Box2D v2.4 b2ContactSolver::SolvePositionConstraints, in 3-D: each point's separation s from
-// its witnesses at the present poses, C = clamp(β (s + slop), −max_correction, 0), and the
+// its witnesses at the present poses, C = clamp(β (s + slop), −max_correction, 0) with the
+// point's own slop (see add_manifold), and the
 // position impulse −C/K along n; per manifold, first at the centroid with the mean
 // separation, then per point Jacobi-style (see the header).
 std::size_t ContactSolver::correct_positions(std::vector<Body>& bodies) {
-  const double slop = settings.linear_slop;
-  auto correction = [this, slop](double separation) {
+  auto correction = [this](double separation, double slop) {
     return std::clamp(settings.baumgarte * (separation + slop), -settings.max_correction, 0.0);
   };
   for (int sweep = 0; sweep < settings.position_iterations; ++sweep) {
     if (poll != nullptr) poll->tick(constraints_.size());
-    double min_separation = 0.0;
+    bool deep = false;  // a point still sunk by more than three slops
     for_each_manifold([&](std::size_t begin, std::size_t end) {
       Vec3 pa, pb;
       if (end - begin > 1) {
@@ -67,7 +67,7 @@ std::size_t ContactSolver::correct_positions(std::vector<Body>& bodies) {
           centroid += 0.5 * (pa + pb), mean += constraints_[k].normal.dot(pb - pa);
         }
         const double count = static_cast<double>(end - begin);
-        const double c = correction(mean / count);
+        const double c = correction(mean / count, constraints_[begin].slop);
         if (c < 0.0) move_apart(bodies, constraints_[begin], centroid / count, c);
       }
       // Then the points, Jacobi-style within the manifold: all measured at the same poses,
@@ -78,15 +78,15 @@ std::size_t ContactSolver::correct_positions(std::vector<Body>& bodies) {
       for (std::size_t k = begin; k < end; ++k) {
         witnesses(bodies, constraints_[k], pa, pb);
         const double separation = constraints_[k].normal.dot(pb - pa);
-        min_separation = std::min(min_separation, separation);
-        corrections[k - begin] = correction(separation);
+        deep = deep || separation < -3.0 * constraints_[k].slop;
+        corrections[k - begin] = correction(separation, constraints_[k].slop);
         points[k - begin] = 0.5 * (pa + pb);
       }
       for (std::size_t k = begin; k < end; ++k)
         if (corrections[k - begin] < 0.0)
           move_apart(bodies, constraints_[k], points[k - begin], share * corrections[k - begin]);
     });
-    if (min_separation >= -3.0 * slop) break;
+    if (!deep) break;
   }
   std::size_t first_bad = all_finite;
   for (std::size_t s = 1; s < solver_bodies_.size(); ++s)

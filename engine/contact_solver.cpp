@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "engine/contact_helpers.hpp"
 #include "engine/format.hpp"
 #include "engine/integrators.hpp"
@@ -29,8 +31,7 @@ std::string contact_settings_problem(const ContactSettings& s) {
                  {"linear_slop", s.linear_slop},
                  {"max_correction", s.max_correction},
                  {"speculative_distance", s.speculative_distance},
-                 {"match_distance", s.match_distance},
-                 {"impact_speed", s.impact_speed}};
+                 {"match_distance", s.match_distance}};
   for (const auto& field : lengths)
     if (!std::isfinite(field.value) || !(field.value >= 0.0))
       return std::string(field.name) + " must be finite and >= 0, got " +
@@ -103,65 +104,118 @@ void ContactSolver::apply_impulse(Constraint& c, const Vec3& impulse) {
   b.angular_velocity += b.inverse_inertia * c.r_b.cross(impulse);
 }
 
-// The coarse correction of a manifold (see the header): the normal impulse that brings its
-// centroid to the mean target velocity (−bias, or the restitution targets), shared equally by
-// its points.
-void ContactSolver::seed_manifold(std::size_t begin, std::size_t end, bool restitution) {
-  const Constraint& first = constraints_[begin];
-  SolverBody& a = solver_bodies_[first.slot_a];
-  SolverBody& b = solver_bodies_[first.slot_b];
-  const double count = static_cast<double>(end - begin);
-  Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
-  double target = 0.0;  // mean of the velocity each point must gain along n, m/s
-  for (std::size_t k = begin; k < end; ++k) {
-    const Constraint& c = constraints_[k];
-    r_a += c.r_a / count, r_b += c.r_b / count;
-    target += target_of(c, restitution) / count;
-  }
-  const Vec3& n = first.normal;
-  const double vn = n.dot(point_velocity_of(b, r_b) - point_velocity_of(a, r_a));
-  const double k = inverse_effective_mass(a, r_a, b, r_b, n);
-  if (!(k > 0.0)) return;
-  // A negative share (the warm start pushed too hard) may take back at most what the
-  // least-loaded point holds, so every accumulated impulse stays ≥ 0.
-  double least = constraints_[begin].normal_impulse;
-  for (std::size_t j = begin; j < end; ++j) least = std::min(least, constraints_[j].normal_impulse);
-  // Only impacts: at rest the warm start already holds a better split than an equal one.
-  if (!(std::abs(target - vn) > settings.impact_speed)) return;
-  const double share = std::max((target - vn) / k / count, -least);
-  if (share == 0.0) return;
-  for (std::size_t j = begin; j < end; ++j) constraints_[j].normal_impulse += share;
-  const Vec3 impulse = share * count * n;
-  a.velocity -= a.inverse_mass * impulse;
-  a.angular_velocity -= a.inverse_inertia * r_a.cross(impulse);
-  b.velocity += b.inverse_mass * impulse;
-  b.angular_velocity += b.inverse_inertia * r_b.cross(impulse);
-}
-
-// One Gauss-Seidel update of a point: friction within the Coulomb disk of the current normal
-// impulse, then the normal impulse (Catto 2005; Box2D v2.4 SolveVelocityConstraints).
-void ContactSolver::solve_point(Constraint& c) {
+// Gauss-Seidel updates of a point (Catto 2005; Box2D v2.4 SolveVelocityConstraints): its
+// friction within the Coulomb disk of the current normal impulse, and its normal impulse
+// toward the target (−bias, or the bounce in the restitution pass), accumulated and ≥ 0.
+void ContactSolver::solve_friction(Constraint& c) {
+  if (!(c.friction > 0.0)) return;
   SolverBody& a = solver_bodies_[c.slot_a];
   SolverBody& b = solver_bodies_[c.slot_b];
-  auto apply = [&](const Vec3& impulse) { apply_impulse(c, impulse); };
-  if (c.friction > 0.0) {
-    const Vec3 dv = point_velocity_of(b, c.r_b) - point_velocity_of(a, c.r_a);
-    double t1 = c.tangent_impulse1 - c.tangent_mass1 * dv.dot(c.tangent1);
-    double t2 = c.tangent_impulse2 - c.tangent_mass2 * dv.dot(c.tangent2);
-    const double limit = c.friction * c.normal_impulse;
-    const double length = std::hypot(t1, t2);
-    if (length > limit) {  // slipping: on the edge of the cone, against the slip
-      const double scale = length > 0.0 ? limit / length : 0.0;
-      t1 *= scale, t2 *= scale;
-    }
-    apply((t1 - c.tangent_impulse1) * c.tangent1 + (t2 - c.tangent_impulse2) * c.tangent2);
-    c.tangent_impulse1 = t1, c.tangent_impulse2 = t2;
-  }
   const Vec3 dv = point_velocity_of(b, c.r_b) - point_velocity_of(a, c.r_a);
-  const double vn = dv.dot(c.normal);
-  const double total = std::max(c.normal_impulse - c.normal_mass * (vn + c.bias), 0.0);
-  apply((total - c.normal_impulse) * c.normal);
+  double t1 = c.tangent_impulse1 - c.tangent_mass1 * dv.dot(c.tangent1);
+  double t2 = c.tangent_impulse2 - c.tangent_mass2 * dv.dot(c.tangent2);
+  const double limit = c.friction * c.normal_impulse;
+  const double length = std::hypot(t1, t2);
+  if (length > limit) {  // slipping: on the edge of the cone, against the slip
+    const double scale = length > 0.0 ? limit / length : 0.0;
+    t1 *= scale, t2 *= scale;
+  }
+  apply_impulse(c, (t1 - c.tangent_impulse1) * c.tangent1 + (t2 - c.tangent_impulse2) * c.tangent2);
+  c.tangent_impulse1 = t1, c.tangent_impulse2 = t2;
+}
+
+double ContactSolver::solve_normal(Constraint& c, bool restitution) {
+  SolverBody& a = solver_bodies_[c.slot_a];
+  SolverBody& b = solver_bodies_[c.slot_b];
+  const double vn = c.normal.dot(point_velocity_of(b, c.r_b) - point_velocity_of(a, c.r_a));
+  const double total =
+      std::max(c.normal_impulse - c.normal_mass * (vn - target_of(c, restitution)), 0.0);
+  const double change = total - c.normal_impulse;
+  apply_impulse(c, change * c.normal);
   c.normal_impulse = total;
+  return std::abs(change);
+}
+
+// The block solve of one manifold's normal impulses (see the header): the accumulated impulses
+// λ' = P λ − K⁺ (v_n − target), K the manifold's J W Jᵀ, K⁺ its pseudo-inverse and P = K⁺K,
+// which reaches every point's target at once when it can (the least-squares impulses when the
+// points are redundant, as the four corners of a face: a symmetric load gets equal impulses).
+// When some λ' would be negative the points are solved one by one instead. Returns the largest
+// change of an impulse.
+double ContactSolver::solve_normals(std::size_t manifold, bool restitution) {
+  const std::size_t begin = manifold_begin_[manifold];
+  const std::size_t end = manifold + 1 < manifold_begin_.size() ? manifold_begin_[manifold + 1]
+                                                                : constraints_.size();
+  const int count = static_cast<int>(end - begin);
+  double largest = 0.0;
+  if (count > 1 && blocks_[manifold].usable) {
+    const Block& block = blocks_[manifold];
+    Vec4 old = Vec4::Zero(), residual = Vec4::Zero();
+    for (int i = 0; i < count; ++i) {
+      const Constraint& c = constraints_[begin + i];
+      const SolverBody& a = solver_bodies_[c.slot_a];
+      const SolverBody& b = solver_bodies_[c.slot_b];
+      old[i] = c.normal_impulse;
+      residual[i] = c.normal.dot(point_velocity_of(b, c.r_b) - point_velocity_of(a, c.r_a)) -
+                    target_of(c, restitution);
+    }
+    const Vec4 next = block.projector * old - block.inverse * residual;
+    if ((next.head(count).array() >= 0.0).all()) {
+      for (int i = 0; i < count; ++i) {
+        Constraint& c = constraints_[begin + i];
+        apply_impulse(c, (next[i] - old[i]) * c.normal);
+        c.normal_impulse = next[i];
+        largest = std::max(largest, std::abs(next[i] - old[i]));
+      }
+      return largest;
+    }
+  }
+  for (std::size_t k = begin; k < end; ++k)
+    largest = std::max(largest, solve_normal(constraints_[k], restitution));
+  return largest;
+}
+
+// K = J W Jᵀ of each manifold's normal constraints (001_* Appendix D for each pair of points:
+// K_ij = m_a⁻¹ + m_b⁻¹ + (r_ai×n)·I_a⁻¹(r_aj×n) + (r_bi×n)·I_b⁻¹(r_bj×n)), its
+// pseudo-inverse from the eigen-decomposition (eigenvalues below 1e-9 of the largest count
+// as 0: four coplanar points have only three independent normal motions) and P = K⁺K.
+void ContactSolver::prepare_blocks() {
+  blocks_.resize(manifold_begin_.size());
+  for (std::size_t m = 0; m < manifold_begin_.size(); ++m) {
+    const std::size_t begin = manifold_begin_[m];
+    const std::size_t end = m + 1 < manifold_begin_.size() ? manifold_begin_[m + 1]
+                                                           : constraints_.size();
+    const int count = static_cast<int>(end - begin);
+    Block& block = blocks_[m];
+    block.usable = false;
+    if (count < 2) continue;
+    Mat4 k = Mat4::Identity();  // unused rows and columns: identity, decoupled
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < count; ++j) {
+        const Constraint& ci = constraints_[begin + i];
+        const Constraint& cj = constraints_[begin + j];
+        const SolverBody& a = solver_bodies_[ci.slot_a];
+        const SolverBody& b = solver_bodies_[ci.slot_b];
+        const Vec3& n = ci.normal;
+        k(i, j) = a.inverse_mass + b.inverse_mass +
+                  ci.r_a.cross(n).dot(a.inverse_inertia * cj.r_a.cross(n)) +
+                  ci.r_b.cross(n).dot(b.inverse_inertia * cj.r_b.cross(n));
+      }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(k);
+    if (eigen.info() != Eigen::Success) continue;
+    const double largest = eigen.eigenvalues().maxCoeff();
+    if (!(largest > 0.0) || !std::isfinite(largest)) continue;
+    Mat4 inverse = Mat4::Zero();
+    for (int e = 0; e < 4; ++e) {
+      const double value = eigen.eigenvalues()[e];
+      if (value > 1e-9 * largest)
+        inverse += (eigen.eigenvectors().col(e) / value) * eigen.eigenvectors().col(e).transpose();
+    }
+    for (int i = count; i < 4; ++i) inverse(i, i) = 0.0, k(i, i) = 0.0;
+    block.inverse = inverse;
+    block.projector = inverse * k;
+    block.usable = true;
+  }
 }
 
 // The restitution pass (see the header): every point again along its normal, to its bounce
@@ -172,24 +226,11 @@ void ContactSolver::apply_restitution() {
   if (std::none_of(constraints_.begin(), constraints_.end(),
                    [](const Constraint& c) { return c.bounces; }))
     return;
-  for_each_manifold([&](std::size_t begin, std::size_t end) {
-    if (end - begin > 1 && std::all_of(constraints_.begin() + begin, constraints_.begin() + end,
-                                       [](const Constraint& c) { return c.bounces; }))
-      seed_manifold(begin, end, true);
-  });
   for (int sweep = 0; sweep < settings.iterations; ++sweep) {
     if (poll != nullptr) poll->tick(constraints_.size());
     double largest_change = 0.0;
-    for (Constraint& c : constraints_) {
-      SolverBody& a = solver_bodies_[c.slot_a];
-      SolverBody& b = solver_bodies_[c.slot_b];
-      const double vn = c.normal.dot(point_velocity_of(b, c.r_b) - point_velocity_of(a, c.r_a));
-      const double total =
-          std::max(c.normal_impulse - c.normal_mass * (vn - target_of(c, true)), 0.0);
-      largest_change = std::max(largest_change, std::abs(total - c.normal_impulse));
-      apply_impulse(c, (total - c.normal_impulse) * c.normal);
-      c.normal_impulse = total;
-    }
+    for (std::size_t m = 0; m < manifold_begin_.size(); ++m)
+      largest_change = std::max(largest_change, solve_normals(m, true));
     if (largest_change == 0.0) break;
   }
 }
@@ -235,18 +276,18 @@ std::size_t ContactSolver::solve_velocities(std::vector<Body>& bodies,
                                             const std::vector<Plane>& planes, const Vec3& gravity,
                                             double dt, ContactVelocities velocities) {
   find_contacts(bodies, planes, gravity, dt, velocities);
-  for_each_manifold([&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) warm_start(constraints_[k], dt);
-    if (end - begin > 1) seed_manifold(begin, end, false);
-  });
-  // Sweeps alternate direction (symmetric Gauss-Seidel), so no point of a symmetric contact,
-  // like the four corners of a box landing flat, is always solved first.
+  for (Constraint& c : constraints_) warm_start(c, dt);
+  prepare_blocks();
+  // Sweeps alternate direction (symmetric Gauss-Seidel over the manifolds): per manifold the
+  // friction of each point, then its normal impulses as a block.
+  const std::size_t manifolds = manifold_begin_.size();
   for (int sweep = 0; sweep < settings.iterations; ++sweep) {
     if (poll != nullptr) poll->tick(constraints_.size());
-    if (sweep % 2 == 0)
-      for (Constraint& c : constraints_) solve_point(c);
-    else
-      for (auto c = constraints_.rbegin(); c != constraints_.rend(); ++c) solve_point(*c);
+    for (std::size_t k = 0; k < manifolds; ++k) {
+      const std::size_t m = sweep % 2 == 0 ? k : manifolds - 1 - k;
+      for_manifold(m, [&](Constraint& c) { solve_friction(c); });
+      solve_normals(m, false);
+    }
   }
   for (Constraint& c : constraints_)
     c.landed = !c.bounces && c.separation > 0.0 && c.normal_impulse > 0.0 && c.impact < 0.0;

@@ -11,7 +11,8 @@
 // constraints: along the normal (001_* Appendix D: λ = −J v / (J W Jᵀ), with the effective
 // mass J W Jᵀ = m_a⁻¹ + m_b⁻¹ + (r_a×n)·I_a⁻¹(r_a×n) + (r_b×n)·I_b⁻¹(r_b×n), which is n·K n
 // for 002_* "Inverse Mass Matrix" K) and along two tangents (Coulomb friction). Per sweep,
-// for each point: friction, then the normal, as Box2D. Impulses are accumulated over the
+// for each manifold: the friction of each point, then the normals (as a block, below), as
+// Box2D does friction before the normal. Impulses are accumulated over the
 // sweeps and the accumulated value is clamped, not each increment (Catto 2005): normal
 // λn ≥ 0, friction (λt1, λt2) inside the disk of radius μ λn (the Coulomb cone).
 //
@@ -62,14 +63,14 @@
 //   the centroid with the mean separation, then to the points Jacobi-style (all measured at
 //   the same poses, each applying 1/count of its correction), so a box sunk evenly rises
 //   straight instead of being tipped corner after corner.
-// - Impacts are solved manifold by manifold first (a coarse correction before Gauss-Seidel):
-//   when the centroid of a manifold must change its normal speed by more than impact_speed,
-//   its points first get equal shares of the impulse that brings the centroid to the mean
-//   target, −(v_n + bias)/(J W Jᵀ) at the mean point (or takes back a warm start that pushes
-//   too hard, down to 0 at the least-loaded point); the same for the restitution pass.
-//   Gauss-Seidel then corrects the split. A symmetric impact (a box landing flat) is solved
-//   symmetrically at once, where plain sequential impulses solve one corner first and leave a
-//   spin that only many sweeps remove. Resting contacts keep their warm-started split.
+// - The normal impulses of a manifold are solved as a block (in the spirit of Box2D v2.4's
+//   two-point block solver): with K = J W Jᵀ of its points, the accumulated impulses become
+//   λ' = P λ − K⁺(v_n − target), K⁺ the pseudo-inverse and P = K⁺K, which reaches every
+//   point's target at once; the four corners of a face are redundant (three independent
+//   normal motions), and the pseudo-inverse then gives the least-squares impulses: a
+//   symmetric load (a box landing flat, a box in a stack) gets equal impulses and no spin,
+//   where sequential impulses always leave the first point solved a little more loaded. When
+//   a block would need a negative impulse somewhere its points are solved one by one.
 //
 // When it runs (World::step): with the Euler integrators the impulses are computed against the
 // velocities the integrator is about to produce (semi-implicit: v + Δt(F/m + g) and
@@ -82,9 +83,13 @@
 // step (at the new positions, on the new velocities) lets RK4 sink a resting body by
 // g Δt²/2 every step that only position correction pulls back (1 cm at 60 Hz, a stack of
 // three 3 cm). The price: between steps, a body resting on a contact shows v = −g Δt/2 (the
-// impulse acted at the start of the step, gravity during it). Springs and force callbacks
-// are evaluated at RK4's stages, after the contacts: the prediction uses gravity and the
-// forces applied before the step, and position correction takes up the difference.
+// impulse acted at the start of the step, gravity during it); with explicit Euler, whose
+// positions move with the velocity before the step, −g Δt for the same reason. Both are
+// inherent to one impulse per step acting before the positions move (removing them after
+// the step would leave the next step's contact without the load that sets its friction
+// limit), and neither moves the body: positions stay on the surface. Springs and force
+// callbacks are evaluated at RK4's stages, after the contacts: the prediction uses gravity
+// and the forces applied before the step, and position correction takes up the difference.
 //
 // Nothing here allocates once the vectors have grown to the largest number of contacts seen.
 #pragma once
@@ -107,14 +112,13 @@ struct ContactSettings {
   int iterations = 10;                 // velocity sweeps per step (1 .. max_iterations)
   int position_iterations = 3;         // position-correction sweeps per step (Box2D: 3)
   double restitution_threshold = 1.0;  // m/s: slower impacts do not bounce (Box2D: 1 m/s)
-  double linear_slop = 0.005;          // m: overlap left uncorrected, keeps contacts (Box2D)
+  double linear_slop = 0.005;          // m: overlap left uncorrected, keeps contacts (Box2D);
+                                       // at most 1 % of the smaller body's smallest size
   double baumgarte = 0.2;              // fraction of the overlap removed per sweep (Box2D)
   double max_correction = 0.2;         // m: largest move per point per sweep (Box2D)
   double speculative_distance = 0.02;  // m: gaps up to this are contacts (Box2D v3: 4 slops)
   double match_distance = 0.02;        // m: a point this close to one of the previous step
                                        // (same pair) continues it, when the features differ
-  double impact_speed = 1.0;           // m/s: a manifold whose centroid must change its
-                                       // normal speed by more is solved as a whole first
 };
 
 // "" or the rule broken: "iterations must be an integer from 1 to 1000, got 0", ...
@@ -203,6 +207,7 @@ class ContactSolver {
     double normal_impulse, tangent_impulse1, tangent_impulse2;  // N s
     double bias;          // m/s: gap/Δt of a speculative point, else 0
     double approach;      // m/s: v_n before the solve (the velocity the positions move with)
+    double slop;          // m: the overlap position correction leaves (see add_manifold)
     double acceleration;  // m/s²: a_n, relative normal acceleration of the point, free
     double impact;        // m/s: w, normal velocity at the impact in this step, else 0
     double target;        // m/s: v_n after the restitution pass at a bouncing point
@@ -238,7 +243,6 @@ class ContactSolver {
   const ContactInfo* previous_point(const Constraint& c) const;
   void warm_start(Constraint& c, double dt);
   void prepare_restitution(Constraint& c, const ContactInfo* previous, double dt) const;
-  void seed_manifold(std::size_t begin, std::size_t end, bool restitution);
   double target_of(const Constraint& c, bool restitution) const {
     return restitution && c.bounces ? c.target : -c.bias;
   }
@@ -249,7 +253,17 @@ class ContactSolver {
       f(manifold_begin_[i],
         i + 1 < manifold_begin_.size() ? manifold_begin_[i + 1] : constraints_.size());
   }
-  void solve_point(Constraint& c);
+  void solve_friction(Constraint& c);
+  double solve_normal(Constraint& c, bool restitution);
+  double solve_normals(std::size_t manifold, bool restitution);
+  void prepare_blocks();
+  // Calls f(constraint) for each point of manifold m.
+  template <class F>
+  void for_manifold(std::size_t m, F&& f) {
+    const std::size_t end =
+        m + 1 < manifold_begin_.size() ? manifold_begin_[m + 1] : constraints_.size();
+    for (std::size_t k = manifold_begin_[m]; k < end; ++k) f(constraints_[k]);
+  }
   void apply_impulse(Constraint& c, const Vec3& impulse);
   void apply_restitution();
   void store_results(double dt);
@@ -263,6 +277,15 @@ class ContactSolver {
   std::vector<Proxy> proxies_;             // broad phase, sorted along x
   std::vector<Constraint> constraints_;
   std::vector<std::size_t> manifold_begin_;  // the first constraint of each manifold
+  // The block solve of a manifold's normal impulses: K⁺ and P = K⁺K (4 x 4, the unused rows
+  // and columns of a smaller manifold zero).
+  using Mat4 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
+  using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
+  struct Block {
+    Mat4 inverse, projector;
+    bool usable;
+  };
+  std::vector<Block> blocks_;  // by manifold
   std::vector<ContactInfo> contacts_;        // the last step's, sorted (warm starting)
   std::vector<ContactInfo> next_contacts_;
   std::vector<ContactInfo> saved_contacts_;

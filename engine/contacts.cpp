@@ -37,14 +37,19 @@ struct ClipVertex {
 constexpr int max_clip_vertices = 8;  // a quad clipped by four planes gains at most four
 
 // Sutherland–Hodgman against one plane: keeps the part of the convex polygon `in` where
-// dir·p ≤ limit. Returns the number of vertices written to `out`.
+// dir·p ≤ limit. Returns the number of vertices written to `out`. A vertex within `tolerance`
+// of the plane counts as on it (kept, no cut next to it): the side faces of equal boxes
+// stacked edge on edge coincide, and rounding must not cut their corners into near-duplicate
+// points of which only some are kept (a stack would then be held unevenly and topple).
 int clip_polygon(const ClipVertex* in, int count, ClipVertex* out, const Vec3& dir, double limit,
-                 std::uint32_t plane_id) {
+                 double tolerance, std::uint32_t plane_id) {
   int written = 0;
   for (int k = 0; k < count; ++k) {
     const ClipVertex& prev = in[(k + count - 1) % count];
     const ClipVertex& cur = in[k];
-    const double dp = dir.dot(prev.p) - limit, dc = dir.dot(cur.p) - limit;
+    double dp = dir.dot(prev.p) - limit, dc = dir.dot(cur.p) - limit;
+    if (std::abs(dp) <= tolerance) dp = 0.0;
+    if (std::abs(dc) <= tolerance) dc = 0.0;
     if ((dp < 0.0 && dc > 0.0) || (dp > 0.0 && dc < 0.0))
       out[written++] = {prev.p + (dp / (dp - dc)) * (cur.p - prev.p),
                         mix(mix(plane_id, prev.id), cur.id)};
@@ -117,7 +122,11 @@ Manifold face_contact(const Pose& ref, const Vec3& ref_half, int axis, const Vec
     const int side_axis = plane < 2 ? s1 : s2;
     const Vec3 dir = (plane % 2 == 0 ? 1.0 : -1.0) * ref.rotation.col(side_axis);
     const double limit = ref_half[side_axis] + dir.dot(ref.position);
-    count = clip_polygon(polygon, count, scratch, dir, limit, static_cast<std::uint32_t>(plane));
+    // Rounding of positions and of a unit axis times a size, with room to spare.
+    const double tolerance = 1e-9 * (ref_half.maxCoeff() + inc_half.maxCoeff()) +
+                             1e-12 * std::abs(limit);
+    count = clip_polygon(polygon, count, scratch, dir, limit, tolerance,
+                         static_cast<std::uint32_t>(plane));
     std::swap(polygon, scratch);
   }
   Manifold m;

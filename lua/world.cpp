@@ -14,6 +14,7 @@
 
 #include "lua/binding.hpp"
 #include "lua/body.hpp"
+#include "lua/contact_settings.hpp"
 #include "lua/modules.hpp"
 
 namespace rigidlab::lua {
@@ -98,34 +99,6 @@ int check_substeps(lua_State* L, int arg, bool in_table) {
   return static_cast<int>(n);
 }
 
-// The iterations value on top of the stack (velocity sweeps of the contact solver).
-int check_iterations(lua_State* L, int arg, bool in_table) {
-  const int max = ContactSettings::max_iterations;
-  const bool integer = lua_type(L, -1) == LUA_TNUMBER && lua_isinteger(L, -1);
-  const lua_Integer n = integer ? lua_tointeger(L, -1) : 0;
-  if (!integer || n < 1 || n > max) {
-    const char* got = shown_value(L, -1);
-    if (in_table)
-      arg_error(L, arg, "field 'iterations' must be an integer from 1 to %d, got %s", max, got);
-    luaL_error(L, "world.iterations must be an integer from 1 to %d, got %s", max, got);
-  }
-  return static_cast<int>(n);
-}
-
-// The restitution_threshold value on top of the stack (m/s, finite, >= 0).
-double check_threshold(lua_State* L, int arg, bool in_table) {
-  const bool number = lua_type(L, -1) == LUA_TNUMBER;
-  const double x = number ? lua_tonumber(L, -1) : 0.0;
-  if (!number || !std::isfinite(x) || x < 0.0) {
-    const char* got = number ? shown_value(L, -1) : luaL_typename(L, -1);
-    if (in_table)
-      arg_error(L, arg, "field 'restitution_threshold' must be a finite number >= 0 (m/s), got %s",
-                got);
-    luaL_error(L, "world.restitution_threshold must be a finite number >= 0 (m/s), got %s", got);
-  }
-  return x;
-}
-
 // ---- constructor -----------------------------------------------------------------------------
 
 int world_call(lua_State* L) {
@@ -133,8 +106,10 @@ int world_call(lua_State* L) {
   if (lua_isnone(L, 1)) lua_newtable(L);
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  static const char* const fields[] = {"gravity", "integrator", "gyroscopic", "substeps",
-                                       "iterations", "restitution_threshold", nullptr};
+  static const char* const fields[] = {
+      "gravity", "integrator", "gyroscopic", "substeps", "iterations", "position_iterations",
+      "restitution_threshold", "slop", "baumgarte", "max_correction", "speculative_distance",
+      nullptr};
   check_fields(L, 1, fields);
   const Vec3 gravity = field_vec3(L, 1, "gravity", Vec3(0, -9.81, 0), false);
   Integrator integrator = Integrator::semi_implicit;
@@ -149,9 +124,8 @@ int world_call(lua_State* L) {
   }
   if (get_field(L, 1, "substeps") != LUA_TNIL) substeps = check_substeps(L, 1, true);
   ContactSettings contact;
-  if (get_field(L, 1, "iterations") != LUA_TNIL) contact.iterations = check_iterations(L, 1, true);
-  if (get_field(L, 1, "restitution_threshold") != LUA_TNIL)
-    contact.restitution_threshold = check_threshold(L, 1, true);
+  for (const char* const* name = contact_setting_names; *name != nullptr; ++name)
+    if (get_field(L, 1, *name) != LUA_TNIL) read_contact_setting(L, 1, *name, true, contact);
   lua_settop(L, 1);
 
   void* memory = lua_newuserdatauv(L, sizeof(WorldBox), 2);
@@ -381,10 +355,10 @@ void set_body_field(lua_State* L, const char* name, std::size_t index) {
   lua_pop(L, 1);
 }
 
-// The touching points of the last substep. A plane contact is reported from the body's side:
-// a = the body, b = nil, plane = its index, normal = the plane's normal (into the body), and
-// the impulses are the ones the body received; between two bodies they are b's (a got the
-// opposite) and the normal points from a to b.
+// The touching points of the last substep, all with one convention: the normal points from a
+// to b and the impulses are b's (a got the opposite). Against a plane, a is the plane (field
+// a = nil, plane = its index) and b the body: the normal is the plane's, the impulses the
+// body's.
 int world_contacts(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   check_no_extra_args(L, 1);
@@ -393,14 +367,13 @@ int world_contacts(lua_State* L) {
   for (const ContactInfo& c : w.world.contacts()) {
     if (!touched(c)) continue;
     lua_createtable(L, 0, 10);
-    const bool plane = c.a == no_body;
-    set_body_field(L, "a", plane ? c.b : c.a);
-    if (plane) {
+    if (c.a == no_body) {
       lua_pushinteger(L, static_cast<lua_Integer>(c.plane) + 1);
       lua_setfield(L, -2, "plane");
     } else {
-      set_body_field(L, "b", c.b);
+      set_body_field(L, "a", c.a);
     }
+    set_body_field(L, "b", c.b);
     set_vec3_field(L, "point", c.point);
     set_vec3_field(L, "normal", c.normal);
     set_number_field(L, "depth", c.depth);
@@ -547,15 +520,14 @@ int world_index(lua_State* L) {
   else if (std::strcmp(key, "gyroscopic") == 0)
     lua_pushstring(L, gyroscopic_names[static_cast<int>(w.world.gyroscopic())]);
   else if (std::strcmp(key, "substeps") == 0) lua_pushinteger(L, w.world.substeps());
-  else if (std::strcmp(key, "iterations") == 0)
-    lua_pushinteger(L, w.world.contact_settings().iterations);
-  else if (std::strcmp(key, "restitution_threshold") == 0)
-    lua_pushnumber(L, w.world.contact_settings().restitution_threshold);
+  else if (is_contact_setting(key)) push_contact_setting(L, key, w.world.contact_settings());
   else {
     lua_pushvalue(L, 2);
     if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
     luaL_error(L, "world has no field '%s' (fields: time, gravity, integrator, gyroscopic, "
-                  "substeps, iterations, restitution_threshold; methods: see help(\"world\"))",
+                  "substeps, iterations, position_iterations, restitution_threshold, slop, "
+                  "baumgarte, max_correction, speculative_distance; methods: see "
+                  "help(\"world\"))",
                luaL_tolstring(L, 2, nullptr));
   }
   return 1;
@@ -567,9 +539,11 @@ int world_newindex(lua_State* L) {
   const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
   if (is("time")) luaL_error(L, "world.time is read-only (it advances with w:step)");
   if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps") &&
-      !is("iterations") && !is("restitution_threshold"))
+      !is_contact_setting(key))
     luaL_error(L, "world has no field '%s' to set (settable: gravity, integrator, gyroscopic, "
-                  "substeps, iterations, restitution_threshold)", luaL_tolstring(L, 2, nullptr));
+                  "substeps, iterations, position_iterations, restitution_threshold, slop, "
+                  "baumgarte, max_correction, speculative_distance)",
+               luaL_tolstring(L, 2, nullptr));
   if (w.world.stepping()) luaL_error(L, "cannot set world.%s during world:step", key);
   lua_settop(L, 3);
   if (is("gravity")) {
@@ -599,10 +573,9 @@ int world_newindex(lua_State* L) {
     if (w.world.integrator() == Integrator::rk4)
       luaL_error(L, "world.gyroscopic %s", gyroscopic_rk4_rule);
     w.world.set_gyroscopic(gyroscopic);
-  } else if (is("iterations") || is("restitution_threshold")) {
+  } else if (is_contact_setting(key)) {
     ContactSettings contact = w.world.contact_settings();
-    if (is("iterations")) contact.iterations = check_iterations(L, 3, false);
-    else contact.restitution_threshold = check_threshold(L, 3, false);
+    read_contact_setting(L, 3, key, false, contact);
     w.world.set_contact_settings(contact);
   } else {
     w.world.set_substeps(check_substeps(L, 3, false));
@@ -653,15 +626,17 @@ const Entry methods[] = {
      "The planes, each as {normal = unit vec3, offset = m, restitution =, friction =}."},
     {"contacts", world_contacts, "world:contacts", "w:contacts() -> {contact, ...}",
      "The contact points of the last step (its last substep), each a table\n"
-     "{a = body, b = body or nil, plane = index or nil, point = vec3, normal = vec3, depth =,\n"
+     "{a = body or nil, plane = index or nil, b = body, point = vec3, normal = vec3, depth =,\n"
      "normal_impulse =, friction_impulse = vec3, restitution =, friction =}.\n"
-     "Between two bodies the normal points from a to b, b received the impulse\n"
-     "normal_impulse·normal + friction_impulse (N s) and a its opposite. Against a plane, a is\n"
-     "the body, b is nil, the normal is the plane's (into the body) and the impulses are the\n"
-     "body's. point (m) lies midway between the surfaces; depth (m) is the overlap when the\n"
-     "step began (negative: a gap the step closed). Contacts are solved by sequential impulses\n"
-     "(Catto, GDC 2005) with `iterations` sweeps; impacts faster than\n"
-     "restitution_threshold bounce with the pair's restitution."},
+     "The normal points from a to b; b received the impulse normal_impulse·normal +\n"
+     "friction_impulse (N s) and a its opposite. Against a plane, a is nil, plane is the\n"
+     "plane's index and b the body: the normal is the plane's and the impulses the body's.\n"
+     "point (m) is where the surfaces meet (midway between them); depth (m) is the overlap\n"
+     "when the step began (negative: a gap the step closed). For a contact found ahead of\n"
+     "an impact in the step, point and normal are those of the moment the bodies touch.\n"
+     "Contacts are solved by sequential impulses (Catto, GDC 2005) with `iterations` sweeps;\n"
+     "impacts faster than restitution_threshold bounce with the pair's restitution (see\n"
+     "help(\"world\") for the solver's settings and limits)."},
     {"kinetic_energy", world_kinetic_energy, "world:kinetic_energy", "w:kinetic_energy() -> number",
      "Σ ½ m v² + ½ ω·I ω over the bodies (J)."},
     {"potential_energy", world_potential_energy, "world:potential_energy",
@@ -678,7 +653,8 @@ const Entry methods[] = {
 
 const Entry metamethods[] = {
     {"__newindex", world_newindex, "world.__newindex", "w.gravity = g",
-     "Sets gravity, integrator, gyroscopic, substeps, iterations or restitution_threshold."},
+     "Sets gravity, integrator, gyroscopic, substeps or a contact solver setting (see\n"
+     "help(\"world\"))."},
     {"__tostring", world_tostring, "world.__tostring", "tostring(w)",
      "Short form: world(3 bodies, t=1.5, semi_implicit)."},
     {"__gc", world_gc, "world.__gc", "", "Releases the world; its bodies stay valid."},
@@ -700,7 +676,8 @@ const Entry step_entry[] = {
 const Entry call_entry[] = {
     {"__call", world_call, "world",
      "world{gravity =, integrator =, gyroscopic =, substeps =, iterations =, "
-     "restitution_threshold =} -> world",
+     "position_iterations =, restitution_threshold =, slop =, baumgarte =, max_correction =, "
+     "speculative_distance =} -> world",
      "A world of rigid bodies. gravity (vec3, m/s²) default vec3(0, -9.81, 0);\n"
      "integrator: \"euler\" (explicit: positions from the old velocities), \"semi_implicit\"\n"
      "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
@@ -708,11 +685,9 @@ const Entry call_entry[] = {
      "\"implicit\" (default; one Newton step on ω × Iω per substep, stable), \"explicit\" (gains\n"
      "energy) or \"off\" (refused on an rk4 world, which would ignore it; switching to rk4\n"
      "needs gyroscopic = \"implicit\"); substeps (default 1) per w:step(dt).\n"
-     "Contacts: bodies with a shape collide with each other and with planes (w:add_plane);\n"
-     "iterations (default 10) velocity sweeps of the contact solver per substep;\n"
-     "restitution_threshold (m/s, default 1): slower impacts do not bounce.\n"
-     "Fields: time (read-only), gravity, integrator, gyroscopic, substeps, iterations,\n"
-     "restitution_threshold (read/write).\n"
+     "Contacts: bodies with a shape collide with each other and with planes (w:add_plane).\n"
+     "Fields: time (read-only), gravity, integrator, gyroscopic, substeps and the contact\n"
+     "solver settings below (read/write).\n"
      "Methods: add, remove, bodies, add_force, add_spring, add_drag, add_plane, planes,\n"
      "contacts, step, kinetic_energy, potential_energy, energy, linear_momentum,\n"
      "angular_momentum."},
@@ -741,7 +716,9 @@ void open_world(lua_State* L, int lib) {
   lua_pushliteral(L, "world");
   lua_setfield(L, -2, "__metatable");
   lua_setmetatable(L, -2);
-  register_topic(L, -1, "world", call_entry[0].doc);
+  // The topic's text lives as long as the program: help() keeps the pointer.
+  static const std::string doc = std::string(call_entry[0].doc) + "\n" + contact_settings_doc;
+  register_topic(L, -1, "world", doc.c_str());
   lua_setfield(L, lib, "world");
 }
 

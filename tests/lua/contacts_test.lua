@@ -71,25 +71,56 @@ T.case("body materials: defaults, fields, errors", function()
     "bad argument #1 to 'body' (field 'friction' must be finite, got nan)")
 end)
 
-T.case("world contact settings: iterations and restitution_threshold", function()
+T.case("world contact settings: defaults, constructor, fields, errors", function()
   local w = world{}
-  T.equal(w.iterations, 10, "default iterations")
-  T.equal(w.restitution_threshold, 1, "default threshold")
-  w.iterations, w.restitution_threshold = 30, 0.25
-  T.equal(w.iterations, 30, "set iterations")
-  T.equal(w.restitution_threshold, 0.25, "set threshold")
-  local v = world{iterations = 4, restitution_threshold = 0}
-  T.equal(v.iterations, 4, "constructor iterations")
-  T.equal(v.restitution_threshold, 0, "constructor threshold")
-  T.fails(function() w.iterations = 0 end,
-    "world.iterations must be an integer from 1 to 1000, got 0")
-  T.fails(function() w.iterations = 2.5 end,
-    "world.iterations must be an integer from 1 to 1000, got 2.5")
-  T.fails(function() w.restitution_threshold = -1 end,
-    "world.restitution_threshold must be a finite number >= 0 (m/s), got -1")
-  T.fails(function() return world{iterations = "many"} end,
-    "bad argument #1 to 'world' (field 'iterations' must be an integer from 1 to 1000, got many)")
-  T.equal(w.iterations, 30, "unchanged after the errors")
+  local defaults = {iterations = 10, position_iterations = 3, restitution_threshold = 1,
+                    slop = 0.005, baumgarte = 0.2, max_correction = 0.2,
+                    speculative_distance = 0.02}
+  for name, value in pairs(defaults) do T.equal(w[name], value, "default " .. name) end
+  local changed = {iterations = 30, position_iterations = 0, restitution_threshold = 0.25,
+                   slop = 0.001, baumgarte = 1, max_correction = 0.05, speculative_distance = 0}
+  for name, value in pairs(changed) do
+    w[name] = value
+    T.equal(w[name], value, "set " .. name)
+  end
+  local v = world(changed)
+  for name, value in pairs(changed) do T.equal(v[name], value, "constructor " .. name) end
+  local function fails(text, fn) T.fails(fn, text, text) end
+  fails("bad field 'iterations' of world (must be an integer from 1 to 1000, got 0)",
+    function() w.iterations = 0 end)
+  fails("bad field 'iterations' of world (must be an integer from 1 to 1000, got 2.5)",
+    function() w.iterations = 2.5 end)
+  fails("bad field 'position_iterations' of world (must be an integer from 0 to 1000, got -1)",
+    function() w.position_iterations = -1 end)
+  fails("bad field 'restitution_threshold' of world (must be a finite number >= 0 (m/s), " ..
+    "got -1)", function() w.restitution_threshold = -1 end)
+  fails("bad field 'slop' of world (must be a finite number >= 0 (m), got inf)",
+    function() w.slop = math.huge end)
+  fails("bad field 'baumgarte' of world (must be a number from 0 to 1, got 1.5)",
+    function() w.baumgarte = 1.5 end)
+  fails("bad field 'max_correction' of world (must be a finite number >= 0 (m), got nan)",
+    function() w.max_correction = 0 / 0 end)
+  fails("bad field 'speculative_distance' of world (must be a finite number >= 0 (m), got " ..
+    "boolean)", function() w.speculative_distance = true end)
+  fails("bad argument #1 to 'world' (field 'iterations' must be an integer from 1 to 1000, " ..
+    "got many)", function() return world{iterations = "many"} end)
+  fails("bad argument #1 to 'world' (field 'slop' must be a finite number >= 0 (m), got -0.1)",
+    function() return world{slop = -0.1} end)
+  for name, value in pairs(changed) do T.equal(w[name], value, "unchanged after errors: " .. name) end
+end)
+
+T.case("slop: a sunk box rises until it overlaps the floor by the slop", function()
+  -- Position correction removes β (overlap − slop) per sweep (Box2D v2.4), a geometric
+  -- approach to overlap = slop; the slop is at most 1 % of the body's smallest size, so a
+  -- 0.1 m cube rests 1 mm deep where a 1 m cube rests 5 mm deep.
+  for _, case in ipairs{{size = 1, slop = 0.005, want = 0.005}, {size = 1, slop = 0.002, want = 0.002},
+                        {size = 0.1, slop = 0.005, want = 0.001}} do
+    local w = floor_world({slop = case.slop})
+    local box = w:add(body.box{mass = 1, size = vec3(case.size, case.size, case.size),
+                               position = vec3(0, case.size / 2 - 0.03, 0)})
+    w:step(1 / 60, 600)
+    T.near(case.size / 2 - box.position.y, case.want, 1e-6, "rests the slop deep")
+  end
 end)
 
 T.case("contacts(): a ball on the floor and two balls touching", function()
