@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "cli/check.hpp"
 #include "cli/lessons.hpp"
 #include "cli/usage.hpp"
 
@@ -30,11 +31,6 @@ int lesson_command(const std::vector<std::string>& arguments) {
   return run_lesson(arguments.empty() ? "" : arguments[0]);
 }
 
-int check_command(const std::vector<std::string>& arguments) {
-  if (const int status = reject_options("check", arguments)) return status;
-  return check_lessons(arguments, default_check_limits());
-}
-
 bool is_regular_file(const char* path) {
   struct stat info {};
   return stat(path, &info) == 0 && S_ISREG(info.st_mode);
@@ -45,7 +41,8 @@ bool is_regular_file(const char* path) {
 const Subcommand subcommands[] = {
     {"lessons", "", "list the lessons: id, title, source", lessons_command},
     {"lesson", "[ID|FILE]", "step through a lesson (no ID: a menu of them)", lesson_command},
-    {"check", "[ID|FILE ...]", "run the checks of lessons (default: all), under limits",
+    {"check", "[LIMITS] [ID|FILE ...]",
+     "run the checks of lessons (default: all) under limits",
      check_command},
     {nullptr, nullptr, nullptr, nullptr},
 };

@@ -1,7 +1,5 @@
 #include "cli/interrupt.hpp"
 
-#include "lua/binding.hpp"
-
 namespace rigidlab::cli {
 namespace {
 
@@ -25,13 +23,7 @@ void restore_hook() {
     lua_sethook(running_state, saved_hook.hook, saved_hook.mask, saved_hook.count);
 }
 
-[[noreturn]] void raise_interrupt(lua_State* L) {
-  restore_hook();
-  luaL_error(L, "interrupted!");
-  __builtin_unreachable();
-}
-
-void interrupt_hook(lua_State* L, lua_Debug*) { raise_interrupt(L); }
+[[noreturn]] void interrupt_hook(lua_State* L, lua_Debug*) { raise_interrupt(L); }
 
 // lua.c's laction: lua_sethook is safe to call from a signal handler (lua.h, 5.4).
 void on_sigint_while_running(int signal_number) {
@@ -70,13 +62,12 @@ InterruptibleCall::~InterruptibleCall() {
   running_state = nullptr;
 }
 
-void install_interrupt_stop_check(lua_State* L) {
-  rigidlab::lua::set_stop_check(
-      L,
-      [](lua_State* L, void*) {
-        if (interrupt_pending) raise_interrupt(L);
-      },
-      nullptr);
+bool interrupt_requested() { return interrupt_pending != 0; }
+
+void raise_interrupt(lua_State* L) {
+  restore_hook();
+  luaL_error(L, "interrupted!");
+  __builtin_unreachable();
 }
 
 PromptInterrupt::PromptInterrupt() {

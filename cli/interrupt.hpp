@@ -26,9 +26,11 @@ class InterruptibleCall {
   struct sigaction previous_ {};
 };
 
-// Makes rigidlab::lua::check_stop (called between iterations of long C loops in the bindings,
-// where no hook can run) raise "interrupted!" after a Ctrl-C.
-void install_interrupt_stop_check(lua_State* L);
+// True when a Ctrl-C is waiting to be raised: the state's stop check (cli/limits.hpp), which
+// the engine's long loops poll where no hook can run, then calls raise_interrupt.
+bool interrupt_requested();
+// Raises "interrupted!" in L and puts back the hook the Ctrl-C replaced.
+[[noreturn]] void raise_interrupt(lua_State* L);
 
 // While alive, Ctrl-C sets a flag instead of ending the process, and interrupts a blocking
 // read (no SA_RESTART), so the line editor returns. Used around each prompt.

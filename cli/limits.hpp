@@ -1,55 +1,97 @@
-// Limits on what a Lua chunk may consume: instructions, memory and wall-clock time. Used by
-// `rigidlab check` for every lesson, so a lesson that loops forever or allocates without bound
-// fails within seconds and the remaining lessons still run.
+// Limits on what Lua code may consume: instructions, memory and wall-clock time
+// (`rigidlab --max-instructions N --max-memory MB --timeout S`, and `rigidlab check`'s
+// defaults for every lesson), so a script or lesson that loops forever, allocates without
+// bound or hangs in a long call is stopped with a message naming the limit.
 //
-// The instruction count and the clock are checked from a count hook (every 1000 VM
-// instructions); the memory cap lives in the allocator, which returns NULL only when the cap
-// would be exceeded, so Lua's emergency collection runs before the allocation fails.
+// - Instructions: counted by a count hook (every 1000 VM instructions).
+// - Memory: the cap lives in the allocator, which returns NULL only when the cap would be
+//   exceeded, so Lua's emergency collection runs before the allocation fails.
+// - Time: a watchdog thread (cli/watchdog.hpp) raises a flag at the deadline; the count hook
+//   and the state's stop check, which the engine's long loops poll (w:step of any size),
+//   raise the error there. A C function that does not return to Lua in the grace period after
+//   that ends the process (scripts), or its child process (`rigidlab check`).
+// The state's stop check also raises "interrupted!" after a Ctrl-C (cli/interrupt.hpp).
 #pragma once
 
 #include <lua.hpp>
 
-#include <chrono>
+#include <atomic>
 #include <cstddef>
+#include <memory>
 #include <string>
+
+#include "cli/watchdog.hpp"
 
 namespace rigidlab::cli {
 
 struct Limits {
-  long long max_instructions = 0;  // 0: unlimited
+  long long max_instructions = 0;    // 0: unlimited
   std::size_t max_memory_bytes = 0;  // 0: unlimited
-  double timeout_seconds = 0.0;    // 0: unlimited
+  double timeout_seconds = 0.0;      // 0: unlimited
 };
 
-// A Lua state created with the limits' allocator and hook. The object must outlive nothing it
-// created: it closes the state in its destructor.
+// What the watchdog does when a C function does not return in the grace period.
+enum class WhenStuck {
+  exit,         // print "rigidlab: stopped: the time limit (1 s) reached in a C function", _exit(1)
+  leave_to_parent,  // nothing: the process is a child of `rigidlab check`, which kills it
+};
+
+// Seconds between the deadline and giving up on a C function that does not return.
+constexpr double stuck_grace_seconds = 1.0;
+
+// A Lua state created with the limits' allocator, hook and stop check. It closes the state in
+// its destructor.
 class LimitedState {
  public:
-  explicit LimitedState(const Limits& limits);
+  LimitedState(const Limits& limits, WhenStuck when_stuck);
   ~LimitedState();
   LimitedState(const LimitedState&) = delete;
   LimitedState& operator=(const LimitedState&) = delete;
 
-  lua_State* get() const { return state_; }
-  // Restarts the clock and the instruction count (e.g. before each lesson).
-  void restart();
-  // Which limit stopped the last chunk, in words ("the memory limit (64 MB)"), or "" if none.
+  // The object that created L, or nullptr for a state made otherwise.
+  static LimitedState* of(lua_State* L);
+
+  lua_State* get() const { return state_; }  // nullptr if the state could not be created
+  // The timed run begins (a script, a REPL chunk, a lesson): restarts the clock and the
+  // instruction count. end_run: it has ended, the clock stops (the REPL's prompt is not timed).
+  void begin_run();
+  void end_run();
+  // Which limit stopped the code, in words ("the memory limit (64 MB)"), or "" if none.
   std::string limit_hit() const;
-  std::size_t memory_in_use() const { return used_bytes_; }
+  // The message to show for an error `message` of the code: "stopped: the memory limit
+  // (64 MB) reached" for Lua's "not enough memory" when the cap refused an allocation.
+  std::string explain(const std::string& message) const;
+  // "stopped: the time limit (1 s) reached in a C function": what is said when the watchdog
+  // or a parent process gives up on a call.
+  std::string stuck_message() const;
 
  private:
   static void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_size);
   static void hook(lua_State* L, lua_Debug* ar);
-  // Raises a Lua error when a limit has been passed; called by the hook and, through
-  // rigidlab::lua::check_stop, from long loops inside bindings.
-  void enforce(lua_State* L);
+  static void stop_check(lua_State* L, void* self);
+  enum class Hit { none, instructions, memory, time };
+  [[noreturn]] void raise_limit(lua_State* L, Hit hit);
 
   Limits limits_;
   lua_State* state_ = nullptr;
   std::size_t used_bytes_ = 0;
   long long instructions_ = 0;
-  std::chrono::steady_clock::time_point start_;
-  enum class Hit { none, instructions, memory, time } hit_ = Hit::none;
+  Hit hit_ = Hit::none;
+  std::atomic<bool> deadline_passed_{false};
+  std::unique_ptr<Watchdog> watchdog_;  // when there is a time limit
+};
+
+// While alive, `L`'s run is timed (LimitedState::begin_run/end_run); nothing for a state
+// without limits.
+class TimedRun {
+ public:
+  explicit TimedRun(lua_State* L);
+  ~TimedRun();
+  TimedRun(const TimedRun&) = delete;
+  TimedRun& operator=(const TimedRun&) = delete;
+
+ private:
+  LimitedState* state_;
 };
 
 }  // namespace rigidlab::cli

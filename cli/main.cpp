@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/interrupt.hpp"
+#include "cli/limits.hpp"
 #include "cli/options.hpp"
 #include "cli/repl.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
 #include "lua/rigidlab.hpp"
+#include "lua/sandbox.hpp"
 
 namespace {
 
@@ -48,22 +49,25 @@ int protected_main(lua_State* L) {
     lua_setfield(L, LUA_REGISTRYINDEX, "LUA_NOENV");
   }
   rigidlab::lua::open_all(L);
-  install_interrupt_stop_check(L);
+  if (options.sandbox) rigidlab::lua::apply_sandbox(L);
   create_arg_table(L, session.argc, session.argv, options.script);
   lua_gc(L, LUA_GCRESTART);
   lua_gc(L, LUA_GCGEN, 0, 0);  // as lua.c: generational collection
   if (options.warnings) lua_warning(L, "@on", 0);
-  if (!run_actions(L, options)) {
-    session.exit_status = 1;
-    return 0;
-  }
-  if (options.script > 0) {
-    const char* path = script_is_stdin(session.argv, options) ? nullptr
-                                                              : session.argv[options.script];
-    const int status = run_script(L, path);
-    if (status != LUA_OK) {
-      session.exit_status = status == LUA_ERRFILE ? exit_usage : 1;
+  {
+    const TimedRun timed(L);  // -e, -l and the script share the limits; the REPL times each chunk
+    if (!run_actions(L, options)) {
+      session.exit_status = 1;
       return 0;
+    }
+    if (options.script > 0) {
+      const char* path = script_is_stdin(session.argv, options) ? nullptr
+                                                                : session.argv[options.script];
+      const int status = run_script(L, path);
+      if (status != LUA_OK) {
+        session.exit_status = status == LUA_ERRFILE ? exit_usage : 1;
+        return 0;
+      }
     }
   }
   const bool nothing_to_run = options.script == 0 && options.actions.empty() && !options.version;
@@ -72,9 +76,12 @@ int protected_main(lua_State* L) {
 }
 
 int run_lua(int argc, char** argv, const Options& options) {
-  lua_State* L = luaL_newstate();
+  LimitedState state(options.limits, WhenStuck::exit);
+  lua_State* L = state.get();
   if (L == nullptr) {
-    std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
+    std::fprintf(stderr, "rigidlab: cannot create the Lua state: %s\n",
+                 options.limits.max_memory_bytes > 0 ? "the memory limit is too small"
+                                                     : "not enough memory");
     return 1;
   }
   lua_gc(L, LUA_GCSTOP);  // no collection while the libraries are built
@@ -85,7 +92,6 @@ int run_lua(int argc, char** argv, const Options& options) {
     report_error(L, "rigidlab: ");
     session.exit_status = 1;
   }
-  lua_close(L);
   return session.exit_status;
 }
 

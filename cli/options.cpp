@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "cli/limit_options.hpp"
+
 namespace rigidlab::cli {
 namespace {
 
@@ -17,17 +19,25 @@ bool take_value(int argc, char** argv, int& i, std::string& value) {
   return true;
 }
 
-// Handles the long option at argv[i]; false if it is unknown.
-bool parse_long_option(const char* option, Options& options) {
+// Handles the long option at argv[i] (and its value: i moves past it); false if it is unknown,
+// with `error` set when its value is wrong.
+bool parse_long_option(int argc, char** argv, int& i, Options& options, std::string& error) {
+  const char* option = argv[i];
   if (std::strcmp(option, "--help") == 0) options.help = true;
   else if (std::strcmp(option, "--version") == 0) options.version = true;
-  else return false;
+  else if (std::strcmp(option, "--sandbox") == 0) options.sandbox = true;
+  else {
+    const std::vector<std::string> arguments(argv + i, argv + argc);
+    std::size_t k = 0;
+    if (!take_limit_option(arguments, k, options.limits, error)) return false;
+    i += static_cast<int>(k);
+    return error.empty();
+  }
   return true;
 }
 
-}  // namespace
-
-std::string parse_options(int argc, char** argv, Options& options) {
+// Everything but the checks across options.
+std::string parse_arguments(int argc, char** argv, Options& options) {
   const auto unrecognized = [&](int i) { return "unrecognized option '" + std::string(argv[i]) + "'"; };
   for (int i = 1; i < argc; ++i) {
     const char* arg = argv[i];
@@ -40,7 +50,9 @@ std::string parse_options(int argc, char** argv, Options& options) {
         options.script = i + 1 < argc ? i + 1 : 0;
         return "";
       }
-      if (!parse_long_option(arg, options)) return unrecognized(i);
+      std::string error;
+      if (!parse_long_option(argc, argv, i, options, error))
+        return error.empty() ? unrecognized(i) : error;
       continue;
     }
     const char letter = arg[1];
@@ -61,6 +73,17 @@ std::string parse_options(int argc, char** argv, Options& options) {
       default: return unrecognized(i);
     }
   }
+  return "";
+}
+
+}  // namespace
+
+std::string parse_options(int argc, char** argv, Options& options) {
+  const std::string error = parse_arguments(argc, argv, options);
+  if (!error.empty()) return error;
+  for (const Options::Action& action : options.actions)
+    if (action.option == 'l' && options.sandbox)
+      return "'-l' cannot be used with '--sandbox' (the sandbox has no require)";
   return "";
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/limits.hpp"
+
 namespace rigidlab::cli {
 
 struct Options {
@@ -20,11 +22,13 @@ struct Options {
   bool help = false;                // -h, --help
   bool warnings = false;            // -W: Lua's warn() prints
   bool ignore_environment = false;  // -E: LUA_PATH and LUA_CPATH are not read
+  bool sandbox = false;             // --sandbox: lua/sandbox.hpp
+  Limits limits;                    // --max-instructions, --max-memory, --timeout
   int script = 0;                   // index in argv of the script ("-": stdin), 0 if none
 };
 
 // Fills `options` from argv; returns "" or the message of a usage error ("unrecognized option
-// '-x'", "'-e' needs an argument").
+// '-x'", "'-e' needs an argument", "'--timeout' needs a number of seconds >= 0, got 'x'").
 std::string parse_options(int argc, char** argv, Options& options);
 
 // True when the script argument means "read the script from stdin" (`-`, unless written after

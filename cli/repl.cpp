@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "cli/limits.hpp"
 #include "cli/line_reader.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
@@ -93,6 +94,7 @@ void run_repl(lua_State* L, bool terminal) {
     const ReadStatus read = read_chunk(L, *reader, status);
     if (read == ReadStatus::end) break;
     if (read == ReadStatus::interrupted) continue;
+    const TimedRun timed(L);  // the limits apply to each chunk
     if (status == LUA_OK) status = call_chunk(L, 0, LUA_MULTRET, traceback);
     if (status == LUA_OK)
       print_results(L, base);

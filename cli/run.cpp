@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cli/interrupt.hpp"
+#include "cli/limits.hpp"
 #include "cli/usage.hpp"
 
 namespace rigidlab::cli {
@@ -18,7 +19,11 @@ int message_handler(lua_State* L) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
     message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
   }
-  if (lua_toboolean(L, lua_upvalueindex(1)))
+  // A limit's "stopped: ..." is one line: where the code was is in it, the traceback is noise.
+  const LimitedState* limits = LimitedState::of(L);
+  const bool limit_stop = limits != nullptr && !limits->limit_hit().empty() &&
+                          std::strstr(message, "stopped: ") != nullptr;
+  if (lua_toboolean(L, lua_upvalueindex(1)) && !limit_stop)
     luaL_traceback(L, L, message, 1);
   else
     lua_pushstring(L, message);
@@ -55,9 +60,10 @@ int call_chunk(lua_State* L, int arguments, int results, Traceback traceback) {
 
 void report_error(lua_State* L, const char* prefix) {
   const char* message = lua_tostring(L, -1);
+  std::string text = message != nullptr ? message : "(error object is not a string)";
+  if (const LimitedState* limits = LimitedState::of(L)) text = limits->explain(text);
   std::fflush(stdout);  // what was printed before the error comes before it
-  std::fprintf(stderr, "%s%s\n", prefix,
-               message != nullptr ? message : "(error object is not a string)");
+  std::fprintf(stderr, "%s%s\n", prefix, text.c_str());
   std::fflush(stderr);
   lua_pop(L, 1);
 }

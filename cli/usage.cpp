@@ -32,8 +32,17 @@ void print_help(std::FILE* out) {
       "  -h, --help     print this help\n"
       "  -E             ignore the environment variables LUA_PATH and LUA_CPATH\n"
       "  -W             turn warnings on\n"
+      "  --sandbox      run without io, os (but clock, time, date, difftime), require,\n"
+      "                 dofile, loadfile, string.dump and debug (but traceback)\n"
       "  --             stop handling options (the next argument is the script)\n"
       "  -              run stdin as a script\n"
+      "\n"
+      "Limits (0 or absent: none). The script, -e and -l share them; the REPL applies them\n"
+      "to each chunk. A run that passes one is stopped with a message naming it (exit 1):\n"
+      "  --max-instructions N  N Lua VM instructions\n"
+      "  --max-memory MB       MB megabytes of Lua memory in use\n"
+      "  --timeout S           S seconds of wall-clock time, also inside w:step; a C function\n"
+      "                        that has not returned 1 s later ends the process\n"
       "\n"
       "Commands (the first argument, unless a file of that name exists):\n",
       out);
@@ -45,6 +54,9 @@ void print_help(std::FILE* out) {
     std::fprintf(out, "  %-*s  %s\n", static_cast<int>(width), usage.c_str(), command->summary);
   }
   std::fputs(
+      "\n"
+      "`check` runs each lesson in its own process, by default under 500000000\n"
+      "instructions, 256 MB and 10 s; LIMITS (the options above) change them.\n"
       "\n"
       "Exit status: 0 success; 1 a script error (message and traceback on stderr) or a\n"
       "failed check; 2 a usage error (unknown option, missing argument, a script that cannot\n"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `rigidlab lesson` in a real terminal, driven through tmux: it waits on a visible prompt after
-# each step, Enter shows the next step, b goes back, q quits, and `rigidlab lesson` alone
-# offers a numbered menu. Exit 77 (CTest: skipped) when tmux is not installed.
+# each step, Enter shows the next step, b goes back, q quits, `rigidlab lesson` alone offers a
+# numbered menu, and Ctrl-C stops a long step without ending the lesson. Exit 77 (CTest: skipped) when tmux is not installed.
 # Usage: lesson_terminal_test.sh PATH_TO_RIGIDLAB
 set -euo pipefail
 source "$(dirname "$0")/testlib.sh" "$1"
@@ -52,5 +52,18 @@ enter no-such-lesson
 wait_for "an unknown id is refused" "^no lesson 'no-such-lesson'$"
 enter q
 wait_exit "q at the menu exits 0" 0
+
+# Ctrl-C during a step's run stops it (inside w:step) and reports it; the lesson goes on.
+long=$(cd "$(dirname "$0")/../lessons" && pwd)/long_step.lua
+start -- lesson "$long"
+wait_for "a step with a huge w:step starts" '^stepping$'
+sleep 0.3
+key C-c
+wait_for "Ctrl-C stops the step and the error says so" '^(\^C)?  error: .*long_step\.lua:14: interrupted!$'
+wait_for "the lesson waits at its prompt" "$step_prompt"
+key Enter
+wait_for "the next step runs" '^  ✓ after: got 2, want 2$'
+wait_for "the summary has no tick: a step failed" '^1 of 1 checks passed$'
+wait_exit "and the exit status is 1" 1
 
 finish

@@ -75,7 +75,8 @@ for spelling in --help -h; do
   expect_stderr_empty
   [[ $out == usage:* ]] && pass || fail "help does not start with usage:"
   for item in "-e CODE" "-l MOD" "-i " "-v, --version" "-h, --help" "-E " "-W " "-- " "-  " \
-              "lessons" "lesson [ID|FILE]" "check [ID|FILE ...]"; do
+              "--sandbox " "--max-instructions N" "--max-memory MB" "--timeout S" \
+              "lessons" "lesson [ID|FILE]" "check [LIMITS] [ID|FILE ...]"; do
     expect_stdout_contains "  $item"
   done
   expect_stdout_contains "Exit status: 0 success; 1 a script error"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The REPL in a terminal, driven through tmux: banner, prompts, values, Ctrl-C interrupting a
-# loop and clearing a line, multi-line chunks, Tab completion, tracebacks, Ctrl-D, and the
-# history in $HOME/.rigidlab_history. Exit 77 (CTest: skipped) when tmux is not installed.
+# loop and one huge w:step (the world left as before the step) and clearing a line, multi-line
+# chunks, Tab completion, tracebacks, Ctrl-D, and the history in $HOME/.rigidlab_history.
+# Exit 77 (CTest: skipped) when tmux is not installed.
 # Usage: repl_terminal_test.sh PATH_TO_RIGIDLAB
 set -euo pipefail
 source "$(dirname "$0")/testlib.sh" "$1"
@@ -22,6 +23,22 @@ wait_for "Ctrl-C interrupts a running loop" 'interrupted!$'
 wait_for "with a traceback" '^stack traceback:$'
 enter '2*3'
 wait_for "the REPL goes on after Ctrl-C" '^6$'
+
+# Ctrl-C inside one huge w:step (hours: 10000 substeps, 1000 solver sweeps over 100 boxes)
+# stops it where the engine polls, and the world is exactly as before the step.
+enter 'w = world{iterations = 1000} w:add_plane{normal = vec3(0, 1, 0), offset = 0}'
+enter 'for i = 0, 99 do w:add(body.box{mass = 1, size = vec3(1, 1, 1), position = vec3(i % 10 * 1.01, 0.5 + i // 10, 0)}) end'
+enter 'b = w:bodies()[55] b.angular_velocity = vec3(0, 1, 0) w:step(0.01) t0, p0, q0 = w.time, b.position, b.orientation'
+enter 'w.substeps = 10000 print("stepping") w:step(0.01)'
+wait_for "a huge step starts" '^stepping$'
+sleep 0.3
+key C-c
+wait_for "Ctrl-C interrupts the step" '^(\^C)?stdin:1: interrupted!$'
+enter 'print(w.time == t0 and b.position == p0 and b.orientation == q0 and "unchanged")'
+wait_for "time and bodies are as before the step" '^unchanged$'
+enter 'w.substeps = 1 w:step(0.01) print(w.time == t0 + 0.01 and b.orientation ~= q0 and "stepped")'
+wait_for "and the world steps normally afterwards" '^stepped$'
+key C-l  # a clear screen for the tests below, which count prompts on it
 
 type_text 'error("this line was never run")'
 wait_for "a line typed" '^> error\("this line was never run"\)$'

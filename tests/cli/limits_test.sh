@@ -1,0 +1,137 @@
+#!/usr/bin/env bash
+# --max-instructions, --max-memory and --timeout for scripts, -e, stdin and the REPL: a runaway
+# run is stopped within seconds with one line naming the limit and exit 1, also inside one huge
+# w:step and inside a C function that never returns to Lua (a backtracking string.find); bad
+# values are usage errors. Usage: limits_test.sh PATH_TO_RIGIDLAB
+set -euo pipefail
+source "$(dirname "$0")/testlib.sh" "$1"
+
+# timed NAME MAX_SECONDS -- COMMAND...: run, then fail if it took longer than MAX_SECONDS.
+timed() {
+  local name=$1 max=$2
+  shift 3
+  local start end
+  start=$(date +%s%N)
+  run "$name" -- "$@"
+  end=$(date +%s%N)
+  elapsed_ms=$(((end - start) / 1000000))
+  if ((elapsed_ms <= max * 1000)); then pass; else fail "took ${elapsed_ms} ms, want <= ${max} s"; fi
+}
+
+printf 'print("looping")\nwhile true do end\n' >"$scratch/loop.lua"
+printf 'local t = {}\nfor i = 1, math.huge do t[i] = {i} end\n' >"$scratch/hog.lua"
+# Backtracking over 40 stars: years inside one C call that never returns to Lua.
+printf 'print("finding")\nstring.find(string.rep("a", 40) .. "b", string.rep("a*", 40) .. "c")\n' \
+  >"$scratch/find.lua"
+# One step of 10000 substeps with 1000 solver sweeps over 400 boxes: hours inside w:step.
+cat >"$scratch/step.lua" <<'EOF'
+local w = world{substeps = 10000, iterations = 1000}
+w:add_plane{normal = vec3(0, 1, 0), offset = 0}
+for i = 0, 399 do
+  w:add(body.box{mass = 1, size = vec3(1, 1, 1), position = vec3(i % 20 * 1.01, 0.5 + i // 20, 0)})
+end
+print("stepping")
+w:step(0.01)
+EOF
+
+timed "an endless loop, --timeout" 3 -- "$rigidlab" --timeout 1 "$scratch/loop.lua"
+expect_status 1
+expect_stdout $'looping\n'
+expect_stderr_line 1 "rigidlab: $scratch/loop.lua:2: stopped: the time limit (1 s) reached"
+expect_stderr_line_count 1
+
+timed "an endless loop, --max-instructions" 3 -- "$rigidlab" --max-instructions 1e6 "$scratch/loop.lua"
+expect_status 1
+expect_stderr_line 1 \
+  "rigidlab: $scratch/loop.lua:2: stopped: the instruction limit (1000000 instructions) reached"
+expect_stderr_line_count 1
+
+timed "unbounded allocation, --max-memory" 5 -- "$rigidlab" --max-memory 32 "$scratch/hog.lua"
+expect_status 1
+expect_stderr_line 1 "rigidlab: stopped: the memory limit (32 MB) reached"
+expect_stderr_line_count 1
+
+timed "a C function that never returns: the watchdog ends the process" 4 -- \
+  "$rigidlab" --timeout 1 "$scratch/find.lua"
+expect_status 1
+expect_stdout $'finding\n'
+expect_stderr_line 1 "rigidlab: stopped: the time limit (1 s) reached in a C function"
+expect_stderr_line_count 1
+
+timed "one huge w:step is stopped inside the engine" 3 -- "$rigidlab" --timeout 1 "$scratch/step.lua"
+expect_status 1
+expect_stdout $'stepping\n'
+expect_stderr_line 1 "rigidlab: $scratch/step.lua:7: stopped: the time limit (1 s) reached"
+
+# The world is as before the stopped step: the script can catch the error and look, as long
+# as what it does afterwards fits in the grace second (the deadline stays passed).
+cat >"$scratch/consistent.lua" <<'EOF'
+local w = world{iterations = 1000}
+w:add_plane{normal = vec3(0, 1, 0), offset = 0}
+for i = 0, 99 do w:add(body.box{mass = 1, size = vec3(1, 1, 1), position = vec3(i % 10 * 1.01, 0.5 + i // 10, 0)}) end
+w:step(0.01)
+local b = w:bodies()[55]
+local t0, p0 = w.time, b.position
+w.substeps = 10000
+local ok, message = pcall(w.step, w, 0.01)
+print(ok, message)
+print(w.time == t0, b.position == p0)
+EOF
+timed "a stopped step leaves the world unchanged" 3 -- "$rigidlab" --timeout 1 "$scratch/consistent.lua"
+expect_stdout $'false\t'"$scratch"$'/consistent.lua:8: stopped: the time limit (1 s) reached\ntrue\ttrue\n'
+
+timed "-e is limited too" 3 -- "$rigidlab" --timeout 0.5 -e 'while true do end'
+expect_status 1
+expect_stderr_line 1 "rigidlab: (command line):1: stopped: the time limit (0.5 s) reached"
+
+timed "a script on stdin" 3 -- bash -c '"$1" --max-instructions 100000 - <"$2"' _ "$rigidlab" "$scratch/loop.lua"
+expect_status 1
+expect_stderr_line 1 "rigidlab: stdin:2: stopped: the instruction limit (100000 instructions) reached"
+
+timed "the limits apply to each chunk of the REPL, which goes on" 5 -- bash -c \
+  'printf "x = 0\nwhile true do x = x + 1 end\nprint(x > 0)\nwhile true do end\nprint(\"after\")\n" | "$1" --timeout 0.5' \
+  _ "$rigidlab"
+expect_status 0
+expect_stdout $'true\nafter\n'
+expect_stderr_line 1 "stdin:1: stopped: the time limit (0.5 s) reached"
+expect_stderr_line 2 "stdin:1: stopped: the time limit (0.5 s) reached"
+expect_stderr_line_count 2
+
+run "--option=value" -- "$rigidlab" --max-instructions=1000 -e 'for i = 1, 1e9 do end'
+expect_status 1
+expect_stderr_line 1 "rigidlab: (command line):1: stopped: the instruction limit (1000 instructions) reached"
+
+run "limits that are not reached change nothing" -- \
+  "$rigidlab" --max-instructions 1e9 --max-memory 64 --timeout 30 -e 'print(#string.rep("x", 1e6))'
+expect_status 0
+expect_stdout $'1000000\n'
+expect_stderr_empty
+
+run "0 means no limit" -- "$rigidlab" --timeout 0 --max-memory 0 --max-instructions 0 -e 'print("ok")'
+expect_status 0
+expect_stdout $'ok\n'
+
+# A limit stop is not a script's own error: pcall cannot swallow it for good.
+run "pcall in a loop cannot outlive the limit" -- \
+  "$rigidlab" --timeout 0.5 -e 'while true do pcall(function() while true do end end) end'
+expect_status 1
+expect_stderr_contains "stopped: the time limit (0.5 s) reached"
+
+# Bad values are usage errors: exit 2, nothing runs.
+for bad in "--timeout" "--timeout x" "--timeout -1" "--timeout nan" "--timeout inf" "--timeout=" \
+    "--timeout 1s" "--max-memory -5" "--max-memory 1e99" "--max-instructions 1.5" \
+    "--max-instructions 2e18" "--max-instructions=" "--timeout= 1"; do
+  read -ra words <<<"$bad"
+  run "bad value: $bad" -- "$rigidlab" "${words[@]}" -e 'print("ran")'
+  expect_status 2
+  expect_stdout ""
+  expect_stderr_line 2 "Try 'rigidlab --help' for more information."
+done
+run "the message says what was expected" -- "$rigidlab" --timeout x -e 'print("ran")'
+expect_stderr_line 1 "rigidlab: '--timeout' needs a number of seconds >= 0, got 'x'"
+run "a missing value" -- "$rigidlab" --max-memory
+expect_stderr_line 1 "rigidlab: '--max-memory' needs an argument (a number of megabytes >= 0)"
+run "a fractional instruction count" -- "$rigidlab" --max-instructions 1.5 -e ''
+expect_stderr_line 1 "rigidlab: '--max-instructions' needs a whole number of instructions >= 0, got '1.5'"
+
+finish
