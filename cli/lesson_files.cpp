@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "cli/interrupt.hpp"
+#include "lua/text_only.hpp"
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
@@ -73,6 +74,7 @@ bool load_lesson(lua_State* L, const fs::path& path, std::string& error) {
     status = lua_pcall(L, 0, 1, handler);
   }
   if (status != LUA_OK) {
+    rigidlab::lua::explain_text_only(L, path.c_str());
     error = lua_tostring(L, -1) != nullptr ? lua_tostring(L, -1) : "error";
     lua_settop(L, handler - 1);
     return false;

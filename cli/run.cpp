@@ -7,6 +7,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/limits.hpp"
 #include "cli/usage.hpp"
+#include "lua/text_only.hpp"
 
 namespace rigidlab::cli {
 namespace {
@@ -99,11 +100,8 @@ int run_script(lua_State* L, const char* path) {
     lua_pop(L, 1);
     return status;
   }
-  if (status == LUA_ERRSYNTAX && std::strncmp(lua_tostring(L, -1), "attempt to load", 15) == 0) {
-    // Lua's refusal of a binary chunk names no file: say which one.
-    lua_pushfstring(L, "%s: %s", path != nullptr ? path : "stdin", lua_tostring(L, -1));
-    lua_remove(L, -2);
-  }
+  // Lua's refusal of a binary chunk names no file and no reason: say which one, and why.
+  if (status == LUA_ERRSYNTAX) rigidlab::lua::explain_text_only(L, path != nullptr ? path : "stdin");
   if (status == LUA_OK) status = call_chunk(L, push_script_arguments(L), 0, Traceback::append);
   if (status != LUA_OK) report_error(L, script_prefix);
   return status;

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "lua/modules.hpp"
+#include "lua/text_only.hpp"
 
 namespace rigidlab::lua {
 
@@ -29,6 +30,7 @@ int open_library(lua_State* L) {
 
 void open_all(lua_State* L) {
   luaL_openlibs(L);
+  install_text_only_loaders(L);
   luaL_requiref(L, "rigidlab", open_library, 0);
   lua_pushnil(L);
   while (lua_next(L, -2) != 0) {  // copy every name but `version` to the globals

@@ -1,32 +1,11 @@
 #include "lua/sandbox.hpp"
 
-#include <cstring>
-
 #include "lua/binding.hpp"
 
 namespace rigidlab::lua {
 namespace {
 
 const char sandbox_key = 0;
-
-// load(chunk [, chunkname [, mode [, env]]]) with the mode forced to text: a binary chunk can
-// crash the interpreter (the bytecode is not verified).
-int text_only_load(lua_State* L) {
-  const int args = lua_gettop(L);
-  lua_pushvalue(L, lua_upvalueindex(1));  // the original load
-  lua_pushvalue(L, 1);
-  if (args >= 2) lua_pushvalue(L, 2); else lua_pushnil(L);
-  if (args >= 3 && !lua_isnil(L, 3) && std::strcmp(luaL_checkstring(L, 3), "t") != 0)
-    return luaL_error(L, "bad argument #3 to 'load' (only text chunks (\"t\") in the sandbox)");
-  lua_pushliteral(L, "t");
-  int pushed = 4;
-  if (args >= 4) {
-    lua_pushvalue(L, 4);
-    ++pushed;
-  }
-  lua_call(L, pushed - 1, LUA_MULTRET);
-  return lua_gettop(L) - args;
-}
 
 // Keeps only `kept` (nullptr-terminated) in the global library table `name`.
 void keep_only(lua_State* L, const char* name, const char* const* kept) {
@@ -59,9 +38,7 @@ void apply_sandbox(lua_State* L) {
     lua_setfield(L, -2, "dump");
   }
   lua_pop(L, 1);
-  lua_getglobal(L, "load");
-  lua_pushcclosure(L, text_only_load, 1);
-  lua_setglobal(L, "load");
+  // load is text only everywhere already (open_all: lua/text_only.hpp).
   // The library tables stay reachable through package.loaded only via require, which is gone;
   // the registry copy of package.loaded is not reachable without debug.getregistry.
   lua_pushboolean(L, 1);

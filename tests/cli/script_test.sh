@@ -102,16 +102,35 @@ printf '#!/usr/bin/env rigidlab\nprint("shebang skipped")\n' >"$scratch/shebang.
 run "a #! first line is skipped" -- "$rigidlab" "$scratch/shebang.lua"
 expect_stdout $'shebang skipped\n'
 
-# Scripts are text: precompiled chunks are refused, from the command line and from load().
+# Scripts are text: precompiled chunks are refused, from the command line, load, dofile,
+# require and -l.
 printf 'local f = assert(io.open(arg[1], "wb"))\nf:write(string.dump(function() print(1) end))\nf:close()\n' \
   >"$scratch/dump.lua"
 "$rigidlab" "$scratch/dump.lua" "$scratch/binary.luac"
 run "a binary chunk is refused" -- "$rigidlab" "$scratch/binary.luac"
 expect_status 1
-expect_stderr_line 1 "rigidlab: $scratch/binary.luac: attempt to load a binary chunk (mode is 't')"
+expect_stderr_line 1 "rigidlab: $scratch/binary.luac: attempt to load a binary chunk (rigidlab loads text only)"
 run "- refuses binary chunks too" -- bash -c '"$1" - <"$2"' _ "$rigidlab" "$scratch/binary.luac"
 expect_status 1
-expect_stderr_line 1 "rigidlab: stdin: attempt to load a binary chunk (mode is 't')"
+expect_stderr_line 1 "rigidlab: stdin: attempt to load a binary chunk (rigidlab loads text only)"
+run "load refuses mode b" -- "$rigidlab" -e 'load(string.dump(function() end), nil, "b")'
+expect_status 1
+expect_stderr_line 1 \
+  "rigidlab: (command line):1: bad argument #3 to 'load' (mode must be \"t\": rigidlab loads text only, got \"b\")"
+run "load of a binary string gives nil and the reason" -- \
+  "$rigidlab" -e 'print(load(string.dump(function() end)))'
+expect_stdout $'nil\tattempt to load a binary chunk (rigidlab loads text only)\n'
+run "dofile refuses binary chunks" -- "$rigidlab" -e "dofile('$scratch/binary.luac')"
+expect_status 1
+expect_stderr_line 1 "rigidlab: $scratch/binary.luac: attempt to load a binary chunk (rigidlab loads text only)"
+cp "$scratch/binary.luac" "$scratch/binmod.lua"
+run "-l refuses a binary module" -- env LUA_PATH="$scratch/?.lua" "$rigidlab" -l binmod
+expect_status 1
+expect_stderr_line 1 "rigidlab: error loading module 'binmod' from file '$scratch/binmod.lua':"
+expect_stderr_line 2 "	attempt to load a binary chunk (rigidlab loads text only)"
+run "require refuses it too" -- env LUA_PATH="$scratch/?.lua" "$rigidlab" -e 'require("binmod")'
+expect_status 1
+expect_stderr_line 1 "rigidlab: error loading module 'binmod' from file '$scratch/binmod.lua':"
 
 run "require(\"rigidlab\") is the table of the globals" -- \
   "$rigidlab" -e 'local r = require("rigidlab") print(r.vec3 == vec3, r.help == help, type(r.version))'
