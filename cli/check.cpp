@@ -194,7 +194,7 @@ int check_lessons(const std::vector<std::string>& ids_or_files, const Limits& li
 Limits default_check_limits() {
   Limits limits;
   limits.max_instructions = 500'000'000;
-  limits.max_memory_bytes = std::size_t(256) << 20;
+  limits.max_memory_megabytes = 256;
   limits.timeout_seconds = 10.0;
   return limits;
 }

@@ -64,7 +64,7 @@ bool take_limit_option(const std::vector<std::string>& arguments, std::size_t& i
   if (name == "--max-instructions")
     limits.max_instructions = static_cast<long long>(value);
   else if (name == "--max-memory")
-    limits.max_memory_bytes = static_cast<std::size_t>(std::ceil(value * (1 << 20)));
+    limits.max_memory_megabytes = value;
   else
     limits.timeout_seconds = value;
   return true;

@@ -1,5 +1,6 @@
 #include "cli/limits.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -29,20 +30,24 @@ void push_where(lua_State* L) {
 
 }  // namespace
 
-LimitedState::LimitedState(const Limits& limits, WhenStuck when_stuck) : limits_(limits) {
-  // luaL_newstate for lauxlib's panic and warning functions; then the allocator is swapped
-  // for the counting one (both use realloc and free), starting from what Lua has allocated.
+LimitedState::LimitedState(const Limits& limits, WhenStuck when_stuck)
+    : limits_(limits),
+      max_memory_bytes_(static_cast<std::size_t>(std::ceil(limits.max_memory_megabytes * (1 << 20)))) {
+  // luaL_newstate for lauxlib's panic and warning functions.
   state_ = luaL_newstate();
   if (state_ == nullptr) return;
-  used_bytes_ = static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNT)) * 1024 +
-                static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNTB));
-  lua_setallocf(state_, &LimitedState::allocate, this);
   // The hook finds this object through the state's extra space (copied into coroutines).
   LimitedState* self = this;
   std::memcpy(lua_getextraspace(state_), &self, sizeof self);
   lua_pushlightuserdata(state_, this);
   lua_rawsetp(state_, LUA_REGISTRYINDEX, &registry_key);
   rigidlab::lua::set_stop_check(state_, &LimitedState::stop_check, this);
+  // Then the allocator becomes the counting one (both use realloc and free), starting from
+  // what Lua has allocated: the allocations above, outside any protected call, cannot fail on
+  // the cap; everything after runs in protected mode.
+  used_bytes_ = static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNT)) * 1024 +
+                static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNTB));
+  lua_setallocf(state_, &LimitedState::allocate, this);
   if (limits_.timeout_seconds > 0.0)
     watchdog_ = std::make_unique<Watchdog>(
         deadline_passed_, stuck_grace_seconds,
@@ -82,8 +87,7 @@ std::string LimitedState::limit_hit() const {
                     limits_.max_instructions);
       return text;
     case Hit::memory:
-      std::snprintf(text, sizeof text, "the memory limit (%.4g MB)",
-                    static_cast<double>(limits_.max_memory_bytes) / (1 << 20));
+      std::snprintf(text, sizeof text, "the memory limit (%g MB)", limits_.max_memory_megabytes);
       return text;
     case Hit::time:
       std::snprintf(text, sizeof text, "the time limit (%g s)", limits_.timeout_seconds);
@@ -116,8 +120,8 @@ void* LimitedState::allocate(void* self_pointer, void* block, std::size_t old_si
     self->used_bytes_ -= old_bytes;
     return nullptr;
   }
-  if (self->limits_.max_memory_bytes > 0 && new_size > old_bytes &&
-      self->used_bytes_ - old_bytes + new_size > self->limits_.max_memory_bytes) {
+  if (self->max_memory_bytes_ > 0 && new_size > old_bytes &&
+      self->used_bytes_ - old_bytes + new_size > self->max_memory_bytes_) {
     self->hit_ = Hit::memory;
     return nullptr;  // Lua collects garbage and tries once more before raising
   }

@@ -26,7 +26,7 @@ namespace rigidlab::cli {
 
 struct Limits {
   long long max_instructions = 0;    // 0: unlimited
-  std::size_t max_memory_bytes = 0;  // 0: unlimited
+  double max_memory_megabytes = 0.0;  // MB of 2^20 bytes; 0: unlimited
   double timeout_seconds = 0.0;      // 0: unlimited
 };
 
@@ -73,6 +73,7 @@ class LimitedState {
   [[noreturn]] void raise_limit(lua_State* L, Hit hit);
 
   Limits limits_;
+  std::size_t max_memory_bytes_;  // 0: unlimited
   lua_State* state_ = nullptr;
   std::size_t used_bytes_ = 0;
   long long instructions_ = 0;

@@ -51,6 +51,12 @@ expect_status 1
 expect_stderr_line 1 "rigidlab: stopped: the memory limit (32 MB) reached"
 expect_stderr_line_count 1
 
+run "a memory limit smaller than the libraries: stopped, not a panic" -- "$rigidlab" --max-memory 0.001 -e 'print(1)'
+expect_status 1
+expect_stdout ""
+expect_stderr_line 1 "rigidlab: stopped: the memory limit (0.001 MB) reached"
+expect_stderr_line_count 1
+
 timed "a C function that never returns: the watchdog ends the process" 4 -- \
   "$rigidlab" --timeout 1 "$scratch/find.lua"
 expect_status 1
