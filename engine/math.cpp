@@ -6,14 +6,6 @@
 
 namespace rigidlab {
 
-Mat3 skew(const Vec3& a) {
-  Mat3 m;
-  m << 0.0, -a.z(), a.y(),
-       a.z(), 0.0, -a.x(),
-       -a.y(), a.x(), 0.0;
-  return m;
-}
-
 SymmetricEigen symmetric_eigen(const Mat3& symmetric) {
   // The iterative solver (not computeDirect) keeps A·V = V·D to ~1e-15 relative even for
   // nearly repeated eigenvalues, which principal moments of symmetric shapes often are.

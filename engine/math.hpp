@@ -16,8 +16,24 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaternion<double, Eigen::DontAlign>;
 
-// The hat operator: skew(a) * b == a.cross(b).
-Mat3 skew(const Vec3& a);
+// x with A x = b for an invertible 3x3 A, by Cramer's rule written with the columns a1, a2,
+// a3 of A: x = (b·(a2×a3), b·(a3×a1), b·(a1×a2)) / det A, det A = a1·(a2×a3). Cheaper than
+// forming A⁻¹ and as accurate for the well-conditioned systems of the integrators.
+inline Vec3 solve3(const Mat3& a, const Vec3& b) {
+  const Vec3 c23 = a.col(1).cross(a.col(2));
+  const Vec3 c31 = a.col(2).cross(a.col(0));
+  const Vec3 c12 = a.col(0).cross(a.col(1));
+  return Vec3(b.dot(c23), b.dot(c31), b.dot(c12)) / a.col(0).dot(c23);
+}
+
+// The hat operator: skew(a) * b == a.cross(b). Inline: the integrators' body loops use it.
+inline Mat3 skew(const Vec3& a) {
+  Mat3 m;
+  m << 0.0, -a.z(), a.y(),
+       a.z(), 0.0, -a.x(),
+       -a.y(), a.x(), 0.0;
+  return m;
+}
 
 // Eigen-decomposition of a symmetric matrix: values ascending, axes the matching unit
 // eigenvectors as columns, right-handed (det = +1). Each axis is given the sign that makes its

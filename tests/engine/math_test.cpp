@@ -22,6 +22,28 @@ TEST(Skew, TimesVectorIsCrossProduct) {
   }
 }
 
+TEST(Solve3, SolvesRandomSystemsAndAKnownOne) {
+  // A known system: x = (1, -2, 3) for this A and b = A x, worked by hand.
+  Mat3 a;
+  a << 2, 1, 0,
+       1, 3, 1,
+       0, 1, 4;
+  const Vec3 x = solve3(a, Vec3(0, -2, 10));
+  EXPECT_NEAR(x.x(), 1, 1e-14);
+  EXPECT_NEAR(x.y(), -2, 1e-14);
+  EXPECT_NEAR(x.z(), 3, 1e-14);
+  // Random well-conditioned systems (identity plus a perturbation, like the integrators'
+  // Jacobians I + dt(...)): the residual A x − b is at rounding level.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    Mat3 m = Mat3::Identity() * (1 + 4 * std::abs(u(rng)));
+    for (int i = 0; i < 9; ++i) m(i / 3, i % 3) += 0.5 * u(rng);
+    const Vec3 b(u(rng), u(rng), u(rng));
+    EXPECT_LT((m * solve3(m, b) - b).norm(), 1e-13 * (1 + b.norm()));
+  }
+}
+
 TEST(SymmetricEigen, SatisfiesEigenEquationOnRandomMatrices) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-5, 5);
