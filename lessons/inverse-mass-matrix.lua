@@ -157,7 +157,8 @@ to 1e-9). This is the idea behind 000's "Sequential impulses". Friction 100 ensu
 Coulomb's limit never clips the friction impulse. collide.resolve does not iterate: it
 solves the 3×3 system at once (and only falls back to sliding at μJ when the stopping
 impulse lies outside Coulomb's cone), so one call stops the corner.]],
-      formula = "pass k: J_k along n, then friction along the sliding direction;   Σ impulses → j",
+      formula = "pass k: J_k along n, then friction along the sliding direction\n" ..
+                "Σ impulses → j",
       run = function(ctx)
         local box = make_box()
         local r = orientation:rotate(corner)

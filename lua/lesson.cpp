@@ -40,6 +40,65 @@ void check_value(lua_State* L, int arg) {
   if (lua_isnone(L, arg)) arg_error(L, arg, "value expected");
 }
 
+// Display width of UTF-8 text in code points (labels hold ω, ², ✓).
+size_t display_width(const std::string& text) {
+  return static_cast<size_t>(std::count_if(text.begin(), text.end(),
+                                           [](unsigned char c) { return (c & 0xC0) != 0x80; }));
+}
+
+// `prefix` + `value` on as many lines as the width needs: one line when it fits, else broken
+// after the ", " separators of the value (a list, vector or matrix: a matrix breaks between
+// its rows first), each continuation line indented to where the value started.
+std::string fit_value(const std::string& prefix, const std::string& value, size_t width) {
+  if (display_width(prefix) + display_width(value) <= width) return prefix + value;
+  const bool matrix = value.rfind("((", 0) == 0;
+  // a matrix's rows line up under its first row, one column in from the outer parenthesis
+  const std::string indent(display_width(prefix) + (matrix ? 1 : 0), ' ');
+  const std::string separator = matrix ? "), (" : ", ";
+  const size_t keep = matrix ? 2 : 1;  // ")," or "," stays at the end of the broken line
+  std::vector<std::string> pieces;
+  for (size_t start = 0;;) {
+    const size_t at = value.find(separator, start);
+    if (at == std::string::npos) {
+      pieces.push_back(value.substr(start));
+      break;
+    }
+    pieces.push_back(value.substr(start, at + keep - start));
+    start = at + keep + 1;  // past the space
+  }
+  std::string text = prefix, line = prefix;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const bool first = i == 0;
+    if (!first && (matrix || display_width(line) + 1 + display_width(pieces[i]) > width)) {
+      text += "\n" + indent + pieces[i];
+      line = indent + pieces[i];
+    } else {
+      text += (first ? "" : " ") + pieces[i];
+      line += (first ? "" : " ") + pieces[i];
+    }
+  }
+  return text;
+}
+
+// Words of `text` on lines of at most `width` columns, each starting with `indent`.
+std::string fit_words(const std::string& text, const std::string& indent, size_t width) {
+  std::string out, line;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    start = end + 1;
+    if (word.empty()) continue;
+    if (!line.empty() && display_width(indent + line + " " + word) > width) {
+      out += indent + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return out + indent + line + "\n";
+}
+
 // The numbers of a value that ctx:expect can compare: a number, vec3, quat, mat3 or a table of
 // numbers. Returns false for anything else.
 bool components(lua_State* L, int index, std::vector<double>& out, std::string& kind) {
@@ -103,7 +162,11 @@ int context_show(lua_State* L) {
   const char* label = check_text(L, 2);
   check_value(L, 3);
   check_no_extra_args(L, 3);
-  write(tally, std::string("  ") + label + " = " + format_value(L, 3, "    ") + "\n");
+  const std::string prefix = std::string("  ") + label + " =";
+  if (test_mat3(L, 3) != nullptr)  // on its rows, under the label
+    write(tally, prefix + format_value(L, 3, "    ") + "\n");
+  else
+    write(tally, fit_value(prefix + " ", format_value(L, 3, ""), tally.width) + "\n");
   return 0;
 }
 
@@ -134,16 +197,22 @@ int context_expect(lua_State* L) {
   }
   const std::string got_text = format_value(L, 3, "");
   const std::string want_text = format_value(L, 4, "");
-  if (problem.empty()) {
+  const std::string mark = problem.empty() ? "  ✓ " : "  ✗ ";
+  const std::string detail =
+      problem.empty() ? "" : " (" + problem + "; tolerance " +
+                                 describe_tolerance(absolute, relative) + ")";
+  const std::string one_line =
+      std::string(label) + ": got " + got_text + ", want " + want_text + detail;
+  if (problem.empty())
     ++tally.passed;
-    write(tally, "  ✓ " + std::string(label) + ": got " + got_text + ", want " + want_text + "\n");
-  } else {
-    ++tally.failed;
-    const std::string failure = std::string(label) + ": got " + got_text + ", want " + want_text +
-                                " (" + problem + "; tolerance " +
-                                describe_tolerance(absolute, relative) + ")";
-    tally.failures.push_back(failure);
-    write(tally, "  ✗ " + failure + "\n");
+  else
+    ++tally.failed, tally.failures.push_back(one_line);
+  if (display_width(mark + one_line) <= static_cast<size_t>(tally.width)) {
+    write(tally, mark + one_line + "\n");
+  } else {  // label, then got and want on lines of their own, aligned
+    write(tally, mark + label + (detail.empty() ? "" : detail) + "\n" +
+                     fit_value("      got  ", got_text, tally.width) + "\n" +
+                     fit_value("      want ", want_text, tally.width) + "\n");
   }
   lua_pushboolean(L, problem.empty());
   return 1;
@@ -178,10 +247,6 @@ int context_table(lua_State* L) {
     cells.push_back(row);
   }
   // Widths in code points, so headings like "n²" align.
-  auto display_width = [](const std::string& s) {
-    return static_cast<size_t>(std::count_if(s.begin(), s.end(),
-                                             [](unsigned char c) { return (c & 0xC0) != 0x80; }));
-  };
   std::vector<size_t> width(columns, 0);
   for (const auto& row : cells)
     for (int j = 0; j < columns; ++j) width[j] = std::max(width[j], display_width(row[j]));
@@ -206,7 +271,15 @@ int context_say(lua_State* L) {
   LessonTally& tally = check_context(L, 1);
   const char* text = check_text(L, 2);
   check_no_extra_args(L, 2);
-  write(tally, std::string("  ") + text + "\n");
+  std::string out;
+  for (const char* line = text;;) {  // each line of the text wrapped on its own
+    const char* end = std::strchr(line, '\n');
+    const std::string part = end ? std::string(line, end) : std::string(line);
+    out += part.empty() ? "\n" : fit_words(part, "  ", tally.width);
+    if (end == nullptr) break;
+    line = end + 1;
+  }
+  write(tally, out);
   return 0;
 }
 
@@ -327,25 +400,35 @@ LessonTally* test_lesson_context(lua_State* L, int index) {
              : nullptr;
 }
 
+namespace {
+std::string lesson_number(double x) { return format_number(x == 0.0 ? 0.0 : x, 10); }
+
+std::string number_list(const double* x, int n) {
+  std::string text;
+  for (int i = 0; i < n; ++i) text += (i ? ", " : "") + lesson_number(x[i]);
+  return text;
+}
+}  // namespace
+
 std::string format_value(lua_State* L, int index, const std::string& indent) {
   index = lua_absindex(L, index);
   if (lua_type(L, index) == LUA_TNUMBER) {
     if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
-    return format_number(lua_tonumber(L, index), 10);
+    return lesson_number(lua_tonumber(L, index));
+  }
+  if (const Vec3* v = test_vec3(L, index)) return "(" + number_list(v->data(), 3) + ")";
+  if (const Quat* q = test_quat(L, index)) {
+    const double wxyz[] = {q->w(), q->x(), q->y(), q->z()};
+    return "quat(" + number_list(wxyz, 4) + ")";
   }
   if (const Mat3* m = test_mat3(L, index)) {
-    if (indent.empty()) {
-      std::string text = luaL_tolstring(L, index, nullptr);
-      lua_pop(L, 1);
-      return text;
-    }
-    std::string text;
+    std::string text = indent.empty() ? "(" : "";
     for (int i = 0; i < 3; ++i) {
-      text += "\n" + indent + "(";
-      for (int j = 0; j < 3; ++j) text += (j ? ", " : "") + format_number((*m)(i, j));
-      text += ")";
+      const double row[] = {(*m)(i, 0), (*m)(i, 1), (*m)(i, 2)};
+      const std::string opening = indent.empty() ? (i ? ", (" : "(") : "\n" + indent + "(";
+      text += opening + number_list(row, 3) + ")";
     }
-    return text;
+    return indent.empty() ? text + ")" : text;
   }
   if (lua_type(L, index) == LUA_TTABLE) {
     std::string text = "{";

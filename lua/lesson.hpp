@@ -16,6 +16,7 @@ struct LessonTally {
   int failed = 0;
   std::vector<std::string> failures;  // "label: got X, want Y (tolerance ...)"
   bool quiet = false;                 // check mode: record, print nothing
+  int width = 80;                     // columns to fit the shown values and checks into
 };
 
 // Pushes a new ctx userdata and returns its tally (valid while the userdata lives).
@@ -23,8 +24,10 @@ LessonTally& push_lesson_context(lua_State* L, bool quiet);
 // The tally of the ctx at `index`, or nullptr if it is not a ctx.
 LessonTally* test_lesson_context(lua_State* L, int index);
 
-// Formats a value for ctx:show: numbers as "%.10g", vec3/quat/mat3 by tostring (a mat3 on
-// three rows, indented by `indent`), a table of numbers as {a, b, c}.
+// Formats a value as a lesson shows it: numbers with 10 significant digits (−0 as 0, so a
+// rounding sign does not distract), vec3 (x, y, z), quat quat(w, x, y, z), mat3 ((..), (..),
+// (..)) or, with a non-empty `indent`, on three rows each starting with a newline and
+// `indent`; a table of numbers as {a, b, c}; anything else by tostring.
 std::string format_value(lua_State* L, int index, const std::string& indent);
 
 }  // namespace rigidlab::lua
