@@ -4,6 +4,7 @@
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 
@@ -94,14 +95,76 @@ void arg_error(lua_State* L, int arg, const char* format, ...) {
 }
 
 void type_error(lua_State* L, int arg, const char* expected) {
-  const char* got;
-  if (luaL_getmetafield(L, arg, "__name") == LUA_TSTRING)
-    got = lua_tostring(L, -1);
-  else if (lua_type(L, arg) == LUA_TLIGHTUSERDATA)
-    got = "light userdata";
-  else
-    got = luaL_typename(L, arg);
-  arg_error(L, arg, "%s expected, got %s", expected, got);
+  arg_error(L, arg, "%s expected, got %s", expected, value_type_name(L, arg));
+}
+
+namespace {
+// The rigidlab type whose tag starts the userdata at `index`, or nullptr.
+const char* tagged_type_name(lua_State* L, int index) {
+  if (lua_rawlen(L, index) < sizeof(std::uint64_t)) return nullptr;
+  std::uint64_t tag = 0;
+  std::memcpy(&tag, lua_touserdata(L, index), sizeof tag);
+  switch (tag) {
+    case vec3_tag: return "vec3";
+    case mat3_tag: return "mat3";
+    case quat_tag: return "quat";
+    case body_tag: return "body";
+    case world_tag: return "world";
+    default: return nullptr;
+  }
+}
+
+bool is_rigidlab_type_name(const char* name) {
+  static const char* const own[] = {"vec3", "mat3", "quat", "body", "world"};
+  for (const char* o : own)
+    if (std::strcmp(name, o) == 0) return true;
+  return false;
+}
+}  // namespace
+
+const char* value_type_name(lua_State* L, int index) {
+  const int type = lua_type(L, index);
+  if (type == LUA_TLIGHTUSERDATA) return "light userdata";
+  if (type != LUA_TUSERDATA) return lua_typename(L, type);
+  if (const char* name = tagged_type_name(L, index)) return name;
+  const char* name = "userdata";
+  const int field = luaL_getmetafield(L, index, "__name");  // pushes nothing when absent
+  if (field == LUA_TSTRING && !is_rigidlab_type_name(lua_tostring(L, -1)))
+    name = lua_tostring(L, -1);  // stays alive in the metatable
+  if (field != LUA_TNIL) lua_pop(L, 1);
+  return name;
+}
+
+void field_error(lua_State* L, const char* type, const char* name, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  const char* reason = lua_pushvfstring(L, format, args);
+  va_end(args);
+  luaL_error(L, "bad field '%s' of %s (%s)", name, type, reason);
+  std::abort();  // luaL_error does not return
+}
+
+void field_type_error(lua_State* L, const char* type, const char* name, const char* expected,
+                      int value_index) {
+  field_error(L, type, name, "%s expected, got %s", expected, value_type_name(L, value_index));
+}
+
+const char* push_key_name(lua_State* L, int index) {
+  switch (lua_type(L, index)) {
+    case LUA_TSTRING:
+      lua_pushvalue(L, index);
+      return lua_tostring(L, -1);
+    case LUA_TNUMBER:
+      lua_pushvalue(L, index);
+      return lua_tostring(L, -1);  // converts the copy, not the key
+    case LUA_TBOOLEAN: return lua_pushstring(L, lua_toboolean(L, index) ? "true" : "false");
+    default:
+      return lua_pushfstring(L, "%s: %p", value_type_name(L, index), lua_topointer(L, index));
+  }
+}
+
+void overflow_error(lua_State* L, int arg, const char* result, const char* part) {
+  arg_error(L, arg, "%s is not finite (%s overflows the largest double, 1.8e308)", result, part);
 }
 
 void function_error(lua_State* L, const char* format, ...) {
@@ -271,11 +334,8 @@ Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, b
     return fallback;
   }
   const Vec3* v = test_vec3(L, -1);
-  if (v == nullptr) {
-    const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
-                                                                        : luaL_typename(L, -1);
-    arg_error(L, arg, "field '%s' must be a vec3, got %s", name, got);
-  }
+  if (v == nullptr)
+    arg_error(L, arg, "field '%s' must be a vec3, got %s", name, value_type_name(L, -1));
   // A vec3 can hold inf (a row of a static body's infinite tensor); no field takes one.
   if (!is_finite(*v))
     arg_error(L, arg, "field '%s' must be finite, got %s", name, luaL_tolstring(L, -1, nullptr));

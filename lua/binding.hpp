@@ -42,8 +42,35 @@ const Entry* find_entry(lua_State* L, int index);
 // luaL_argerror with the qualified name of the running C function: in a method call
 // (`v:cross(5)`) `arg` counts from the first argument after self, as Lua's own does.
 [[noreturn]] void arg_error(lua_State* L, int arg, const char* format, ...);
-// "<expected> expected, got <type>", where <type> names rigidlab types by name.
+// "<expected> expected, got <type>", the type as value_type_name gives it.
 [[noreturn]] void type_error(lua_State* L, int arg, const char* expected);
+// The name of the type of the value at `index` as messages show it: rigidlab's values (vec3,
+// mat3, quat, body, world) by their tag, which a script cannot forge (it can replace a
+// metatable with debug.setmetatable, or give a table a __name); other userdata by their
+// __name when it is not one of rigidlab's ("FILE*"), else "userdata"; everything else by its
+// Lua type ("table", "no value"). Pushes nothing; the string lives as long as the value's
+// metatable.
+const char* value_type_name(lua_State* L, int index);
+
+// "bad field 'NAME' of TYPE (REASON)": an assignment to, or a read of, a field of a rigidlab
+// object that refuses it (b.mass = 5, v.w, w.gravity = 1). REASON says what is allowed and
+// what came, as an argument error's does: "vec3 expected, got number", "read-only (...)",
+// "no such field (fields: x, y, z)". Prefixed with the script's position, as arg_error.
+[[noreturn]] void field_error(lua_State* L, const char* type, const char* name,
+                              const char* format, ...);
+// field_error with "<expected> expected, got <type of the value at value_index>".
+[[noreturn]] void field_type_error(lua_State* L, const char* type, const char* name,
+                                   const char* expected, int value_index);
+// The key at `index` as a field name in messages, pushed: a string or a number as itself,
+// other values as "table: 0x..." (no __tostring is run). For "bad field '1' of vec3".
+const char* push_key_name(lua_State* L, int index);
+
+// An operation on finite values whose result overflowed: "bad argument #2 to 'vec3.__add'
+// (the result is not finite (a component overflows the largest double, 1.8e308))". `arg` is
+// the operand blamed: the one that made the result too large (the second of a binary
+// operator, the scalar of a product). `result` is "the result", "the inverse", ...; `part`
+// is "a component", "an entry".
+[[noreturn]] void overflow_error(lua_State* L, int arg, const char* result, const char* part);
 // luaL_error prefixed with the qualified name of the running function: "'world:step': ...".
 [[noreturn]] void function_error(lua_State* L, const char* format, ...);
 // Raises an error for arguments past the last one a function takes: a silently ignored
@@ -80,6 +107,8 @@ struct Tagged {
 inline constexpr std::uint64_t vec3_tag = 0x7633'7269'6769'646cULL;  // arbitrary, distinct
 inline constexpr std::uint64_t mat3_tag = 0x6d33'7269'6769'646cULL;
 inline constexpr std::uint64_t quat_tag = 0x7174'7269'6769'646cULL;
+inline constexpr std::uint64_t body_tag = 0x626f'6479'7269'646cULL;   // lua/body.cpp
+inline constexpr std::uint64_t world_tag = 0x776f'726c'6472'6c62ULL;  // lua/world.cpp
 
 template <class T>
 T* test_tagged(lua_State* L, int index, std::uint64_t tag) {
@@ -106,6 +135,16 @@ inline Quat* test_quat(lua_State* L, int index) { return test_tagged<Quat>(L, in
 Vec3& check_vec3(lua_State* L, int arg);
 Mat3& check_mat3(lua_State* L, int arg);
 Quat& check_quat(lua_State* L, int arg);
+// Raises overflow_error (blaming `arg`) unless the result of an operation is finite.
+inline void check_result(lua_State* L, const Vec3& v, int arg) {
+  if (!is_finite(v)) overflow_error(L, arg, "the result", "a component");
+}
+inline void check_result(lua_State* L, const Mat3& m, int arg) {
+  if (!is_finite(m)) overflow_error(L, arg, "the result", "an entry");
+}
+inline void check_result(lua_State* L, const Quat& q, int arg) {
+  if (!is_finite(q)) overflow_error(L, arg, "the result", "a component");
+}
 inline Vec3& push_vec3(lua_State* L, const Vec3& v) {
   return push_tagged(L, v, vec3_tag, &vec3_metatable_key);
 }

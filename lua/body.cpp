@@ -19,7 +19,6 @@ namespace rigidlab::lua {
 namespace {
 
 const char body_metatable_key = 0;
-inline constexpr std::uint64_t body_tag = 0x626f'6479'7269'646cULL;  // distinct from the math tags
 
 using BodyBox = Tagged<BodyHandle>;
 
@@ -40,11 +39,8 @@ void push_finite_result(lua_State* L, const Vec3& v) {
 
 // ---- constructors ----------------------------------------------------------------------------
 
-// The name of the type of the value on top of the stack, rigidlab types by name.
-const char* top_type_name(lua_State* L) {
-  if (luaL_getmetafield(L, -1, "__name") == LUA_TSTRING) return lua_tostring(L, -1);
-  return luaL_typename(L, -1);
-}
+// The name of the type of the value on top of the stack (value_type_name).
+const char* top_type_name(lua_State* L) { return value_type_name(L, -1); }
 
 // mass and static of a constructor table. Returns true for a static body; `mass` is set for a
 // dynamic one. `mass = math.huge` and `static = true` both make a static body.
@@ -294,7 +290,7 @@ Quat new_orientation(lua_State* L) {
 void set_material(lua_State* L, Body& b, bool restitution) {
   const char* key = restitution ? "restitution" : "friction";
   if (lua_type(L, 3) != LUA_TNUMBER)
-    luaL_error(L, "body.%s: number expected, got %s", key, luaL_typename(L, 3));
+    luaL_error(L, "body.%s: number expected, got %s", key, value_type_name(L, 3));
   const double x = lua_tonumber(L, 3);
   const std::string problem = restitution ? material_problem(x, b.friction)
                                           : material_problem(b.restitution, x);
@@ -563,7 +559,11 @@ BodyHandle* test_body(lua_State* L, int index) { return test_tagged<BodyHandle>(
 BodyHandle& check_body_handle(lua_State* L, int arg) {
   BodyHandle* handle = test_body(L, arg);
   if (handle == nullptr) {
-    if (has_metatable(L, arg, &body_metatable_key))  // its __gc has run: used from a finaliser
+    // A body whose __gc has run (used from a finaliser) has its tag cleared but its size and
+    // metatable; anything else in a body's metatable (debug.setmetatable) is named by type.
+    const auto* box = static_cast<const BodyBox*>(lua_touserdata(L, arg));
+    if (box != nullptr && lua_rawlen(L, arg) == sizeof(BodyBox) && box->tag == 0 &&
+        has_metatable(L, arg, &body_metatable_key))
       arg_error(L, arg, "the body was garbage-collected (it is used from a finaliser)");
     type_error(L, arg, "body");
   }

@@ -48,7 +48,7 @@ std::string shown(lua_State* L) {
     return format_number(lua_tonumber(L, -1));
   if (lua_type(L, -1) == LUA_TNUMBER || lua_type(L, -1) == LUA_TSTRING)
     return lua_tostring(L, -1);
-  return luaL_typename(L, -1);
+  return value_type_name(L, -1);
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ int csv_write(lua_State* L) {
   std::vector<std::vector<double>> columns;
   for (int c = 1; c <= count; ++c) {
     if (lua_rawgeti(L, 3, c) != LUA_TSTRING)
-      arg_error(L, 3, "order[%d] must be a column name (string), got %s", c, luaL_typename(L, -1));
+      arg_error(L, 3, "order[%d] must be a column name (string), got %s", c, value_type_name(L, -1));
     names.push_back(lua_tostring(L, -1));
     if (names.back().find_first_of(",\"\n") != std::string::npos)
       arg_error(L, 3, "column name '%s' may not contain a comma, quote or newline",
@@ -39,13 +39,13 @@ int csv_write(lua_State* L) {
     lua_pushvalue(L, -1);
     if (lua_rawget(L, 2) != LUA_TTABLE)
       arg_error(L, 2, "column '%s' must be a list of numbers, got %s", names.back().c_str(),
-                luaL_typename(L, -1));
+                value_type_name(L, -1));
     std::vector<double> values;
     const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
     for (lua_Integer i = 1; i <= n; ++i) {
       if (lua_rawgeti(L, -1, i) != LUA_TNUMBER)
         arg_error(L, 2, "column '%s' entry %d must be a number, got %s", names.back().c_str(),
-                  (int)i, luaL_typename(L, -1));
+                  (int)i, value_type_name(L, -1));
       const double x = lua_tonumber(L, -1);
       if (!std::isfinite(x))
         arg_error(L, 2, "column '%s' entry %d must be finite, got %s", names.back().c_str(),

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "lua/binding.hpp"
-#include "lua/body.hpp"
 #include "lua/modules.hpp"
 
 namespace rigidlab::lua {
@@ -73,20 +72,6 @@ void resolve_name(lua_State* L, const std::string& name) {
   }
 }
 
-// The type of the userdata at `index`: rigidlab's math values and bodies by their tags (their
-// metatables may have been replaced through the debug library), others by __name.
-std::string type_name(lua_State* L, int index) {
-  if (test_vec3(L, index) != nullptr) return "vec3";
-  if (test_mat3(L, index) != nullptr) return "mat3";
-  if (test_quat(L, index) != nullptr) return "quat";
-  if (test_body(L, index) != nullptr) return "body";
-  std::string name = luaL_typename(L, index);
-  const int type = luaL_getmetafield(L, index, "__name");  // pushes nothing when absent
-  if (type == LUA_TSTRING) name = lua_tostring(L, -1);
-  if (type != LUA_TNIL) lua_pop(L, 1);
-  return name;
-}
-
 const char* const overview =
     "rigidlab: rigid-body dynamics in Lua. help(x) documents a function, type or module,\n"
     "given the value or its name: help(vec3), help(\"inertia.solid_box\"), help(vec3.cross).\n"
@@ -118,7 +103,7 @@ int help(lua_State* L) {
     lua_replace(L, 1);
   }
   if (lua_type(L, 1) == LUA_TUSERDATA) {
-    const std::string type = type_name(L, 1);  // a value: the help of its type
+    const std::string type = value_type_name(L, 1);  // a value: the help of its type
     resolve_name(L, type);
     if (find_entry(L, -1) == nullptr)
       arg_error(L, 1, "no help for a %s value (help() lists the topics)", type.c_str());
@@ -133,7 +118,7 @@ int help(lua_State* L) {
     if (!text.empty() && text.back() == '\n') text.pop_back();
   }
   if (text.empty())
-    arg_error(L, 1, "no help for a %s value (help() lists the topics)", luaL_typename(L, 1));
+    arg_error(L, 1, "no help for a %s value (help() lists the topics)", value_type_name(L, 1));
   print_text(L, text);
   return 0;
 }

@@ -121,7 +121,7 @@ int check_list(lua_State* L, int arg, const char* expected) {
 void push_entry_table(lua_State* L, int arg, int entry, const char* const* allowed,
                       const char* shape) {
   if (lua_rawgeti(L, arg, entry) != LUA_TTABLE)
-    arg_error(L, arg, "entry %d must be a table %s, got %s", entry, shape, luaL_typename(L, -1));
+    arg_error(L, arg, "entry %d must be a table %s, got %s", entry, shape, value_type_name(L, -1));
   lua_pushnil(L);
   while (lua_next(L, -2) != 0) {
     lua_pop(L, 1);
@@ -141,7 +141,7 @@ double entry_mass(lua_State* L, int arg, int entry) {
   if (type == LUA_TNIL) arg_error(L, arg, "entry %d: field 'mass' is required", entry);
   if (type != LUA_TNUMBER)
     arg_error(L, arg, "entry %d: field 'mass' must be a number, got %s", entry,
-              luaL_typename(L, -1));
+              value_type_name(L, -1));
   const double m = lua_tonumber(L, -1);
   lua_pop(L, 1);
   if (!std::isfinite(m) || !(m > 0.0))
@@ -157,8 +157,7 @@ T entry_value(lua_State* L, int arg, int entry, const char* name, const char* ty
   const T* value = test(L, -1);
   if (value == nullptr) {
     if (lua_isnil(L, -1)) arg_error(L, arg, "entry %d: field '%s' is required", entry, name);
-    const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
-                                                                         : luaL_typename(L, -1);
+    const char* got = value_type_name(L, -1);
     arg_error(L, arg, "entry %d: field '%s' must be a %s, got %s", entry, name, type_name, got);
   }
   const T result = *value;
@@ -279,8 +278,7 @@ std::vector<Vec3> check_vertices(lua_State* L, int arg) {
     lua_rawgeti(L, arg, i);
     const Vec3* v = test_vec3(L, -1);
     if (v == nullptr) {
-      const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
-                                                                           : luaL_typename(L, -1);
+      const char* got = value_type_name(L, -1);
       arg_error(L, arg, "entry %d must be a vec3, got %s", i, got);
     }
     vertices[i - 1] = *v;
@@ -301,7 +299,7 @@ std::vector<MeshTriangle> check_triangles(lua_State* L, int arg, int vertex_coun
       for (lua_pushnil(L); lua_next(L, -2) != 0; lua_pop(L, 1)) ++keys;
     if (!is_table || keys != 3 || lua_rawlen(L, -1) != 3)
       arg_error(L, arg, "entry %d must be a table of 3 vertex indices {i, j, k}, got %s", t,
-                is_table ? "a table of another shape" : luaL_typename(L, -1));
+                is_table ? "a table of another shape" : value_type_name(L, -1));
     for (int k = 0; k < 3; ++k) {
       // Like luaL_checkinteger, a float with an integral value (2.0) is accepted.
       int is_integer = 0;
@@ -310,7 +308,7 @@ std::vector<MeshTriangle> check_triangles(lua_State* L, int arg, int vertex_coun
       if (!is_integer)
         arg_error(L, arg, "entry %d: vertex index %d must be an integer, got %s", t, k + 1,
                   lua_type(L, -1) == LUA_TNUMBER ? luaL_tolstring(L, -1, nullptr)
-                                                 : luaL_typename(L, -1));
+                                                 : value_type_name(L, -1));
       if (index < 1 || index > vertex_count)
         arg_error(L, arg, "entry %d: vertex index %I is out of range (the vertices are 1 to %d)",
                   t, index, vertex_count);

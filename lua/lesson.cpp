@@ -125,7 +125,7 @@ bool components(lua_State* L, int index, std::vector<double>& out, std::string& 
       if (!is_number) return false;
     }
   } else {
-    kind = luaL_typename(L, index);
+    kind = value_type_name(L, index);
     return false;
   }
   return true;
@@ -236,7 +236,7 @@ int context_table(lua_State* L) {
   const lua_Integer rows = static_cast<lua_Integer>(lua_rawlen(L, 3));
   for (lua_Integer i = 1; i <= rows; ++i) {
     if (lua_rawgeti(L, 3, i) != LUA_TTABLE)
-      arg_error(L, 3, "row %d must be a table, got %s", (int)i, luaL_typename(L, -1));
+      arg_error(L, 3, "row %d must be a table, got %s", (int)i, value_type_name(L, -1));
     std::vector<std::string> row;
     for (int j = 1; j <= columns; ++j) {
       lua_rawgeti(L, -1, j);
@@ -298,7 +298,7 @@ int context_tostring(lua_State* L) {
 void check_step(lua_State* L, int arg, int number) {
   const int step = lua_gettop(L);
   if (lua_type(L, step) != LUA_TTABLE)
-    arg_error(L, arg, "steps[%d] must be a table, got %s", number, luaL_typename(L, step));
+    arg_error(L, arg, "steps[%d] must be a table, got %s", number, value_type_name(L, step));
   static const char* const allowed[] = {"title", "text", "formula", "run", nullptr};
   lua_pushnil(L);
   while (lua_next(L, step) != 0) {
@@ -317,7 +317,7 @@ void check_step(lua_State* L, int arg, int number) {
     const int type = lua_getfield(L, step, f.name);
     if (type != f.type && (f.required || type != LUA_TNIL))
       arg_error(L, arg, "steps[%d]: field '%s' must be a %s, got %s", number, f.name,
-                lua_typename(L, f.type), luaL_typename(L, -1));
+                lua_typename(L, f.type), value_type_name(L, -1));
     lua_pop(L, 1);
   }
 }
@@ -330,7 +330,7 @@ int lesson_new(lua_State* L) {
   check_fields(L, 1, allowed);
   for (const char* name : {"id", "title", "source"}) {
     if (lua_getfield(L, 1, name) != LUA_TSTRING || lua_rawlen(L, -1) == 0)
-      arg_error(L, 1, "field '%s' must be a non-empty string, got %s", name, luaL_typename(L, -1));
+      arg_error(L, 1, "field '%s' must be a non-empty string, got %s", name, value_type_name(L, -1));
     lua_pop(L, 1);
   }
   lua_getfield(L, 1, "id");

@@ -14,8 +14,7 @@ namespace {
 // Pushes a result that must be finite; an overflow is blamed on argument `arg` (the operand
 // that made it too large), so the error names the function and the argument.
 Mat3& push_finite_mat3(lua_State* L, const Mat3& m, int arg) {
-  if (!is_finite(m))
-    arg_error(L, arg, "the result is not finite (an entry overflows the largest double, 1.8e308)");
+  check_result(L, m, arg);
   return push_mat3(L, m);
 }
 
@@ -23,13 +22,13 @@ Mat3& push_finite_mat3(lua_State* L, const Mat3& m, int arg) {
 // metamethods (__len, __index) are not run, so they cannot raise errors of their own here.
 void read_row(lua_State* L, int row, Mat3& m) {
   if (lua_rawgeti(L, 1, row + 1) != LUA_TTABLE)
-    arg_error(L, 1, "row %d must be a table of 3 numbers, got %s", row + 1, luaL_typename(L, -1));
+    arg_error(L, 1, "row %d must be a table of 3 numbers, got %s", row + 1, value_type_name(L, -1));
   if (lua_rawlen(L, -1) != 3)
     arg_error(L, 1, "row %d must have 3 numbers, got %d", row + 1, (int)lua_rawlen(L, -1));
   for (int j = 0; j < 3; ++j) {
     if (lua_rawgeti(L, -1, j + 1) != LUA_TNUMBER)
       arg_error(L, 1, "entry (%d, %d) must be a number, got %s", row + 1, j + 1,
-                luaL_typename(L, -1));
+                value_type_name(L, -1));
     const double x = lua_tonumber(L, -1);
     if (!std::isfinite(x))
       arg_error(L, 1, "entry (%d, %d) must be finite, got %s", row + 1, j + 1,
@@ -189,8 +188,7 @@ int mat3_inverse(lua_State* L) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       inverse(i, j) = std::ldexp(inverse(i, j), col_exp[i] + row_exp[j]);
-  if (!is_finite(inverse))
-    arg_error(L, 1, "the inverse is not finite (an entry overflows the largest double, 1.8e308)");
+  if (!is_finite(inverse)) overflow_error(L, 1, "the inverse", "an entry");
   push_mat3(L, inverse);
   return 1;
 }
@@ -268,8 +266,7 @@ int mat3_mul(lua_State* L) {
     push_finite_mat3(L, lua_tonumber(L, 1) * check_mat3(L, 2), 1);
   } else if (const Vec3* v = test_vec3(L, 2)) {
     const Vec3 result = *a * *v;
-    if (!is_finite(result))
-      arg_error(L, 2, "the result is not finite (a component overflows the largest double, 1.8e308)");
+    check_result(L, result, 2);
     push_vec3(L, result);
   } else if (const Mat3* b = test_mat3(L, 2)) {
     push_finite_mat3(L, *a * *b, 2);
@@ -321,16 +318,14 @@ int mat3_index(lua_State* L) {
   check_mat3(L, 1);
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  luaL_error(L, "bad field '%s' of mat3 (no such field: use M:get(i, j), M:row(i), M:col(j); "
-                "see help(\"mat3\"))", luaL_tolstring(L, 2, nullptr));
-  return 0;
+  field_error(L, "mat3", push_key_name(L, 2),
+              "no such field: use M:get(i, j), M:row(i), M:col(j); see help(\"mat3\")");
 }
 
 int mat3_newindex(lua_State* L) {
   check_mat3(L, 1);
-  luaL_error(L, "bad field '%s' of mat3 (matrices are immutable: build a new one with mat3(...))",
-             luaL_tolstring(L, 2, nullptr));
-  return 0;
+  field_error(L, "mat3", push_key_name(L, 2),
+              "matrices are immutable: build a new one with mat3(...)");
 }
 
 const Entry methods[] = {

@@ -10,15 +10,6 @@
 
 namespace rigidlab::lua {
 
-const char* value_type_name(lua_State* L, int index) {
-  const int type = luaL_getmetafield(L, index, "__name");
-  if (type == LUA_TNIL) return luaL_typename(L, index);
-  // The string stays alive in the metatable after the pop.
-  const char* name = type == LUA_TSTRING ? lua_tostring(L, -1) : nullptr;
-  lua_pop(L, 1);
-  return name != nullptr ? name : luaL_typename(L, index);
-}
-
 const char* push_choice_list(lua_State* L, const char* const* names, int count) {
   luaL_Buffer list;
   luaL_buffinit(L, &list);

@@ -11,10 +11,6 @@
 
 namespace rigidlab::lua {
 
-// The type name a user knows: "vec3", "mat3", ... for rigidlab values, else Lua's name.
-// Pushes nothing; the returned string lives as long as the value at `index`'s metatable.
-const char* value_type_name(lua_State* L, int index);
-
 // "'euler', 'semi_implicit' or 'rk4'": the choices for an option error message (pushed on the
 // stack; the pointer is valid while it stays there).
 const char* push_choice_list(lua_State* L, const char* const* names, int count);

@@ -62,7 +62,7 @@ std::vector<double> read_numbers(lua_State* L, int table, const char* what, int 
   for (lua_Integer i = 1; i <= n; ++i) {
     if (lua_rawgeti(L, table, i) != LUA_TNUMBER)
       arg_error(L, 1, "series %d: %s[%d] must be a number, got %s", series, what, (int)i,
-                luaL_typename(L, -1));
+                value_type_name(L, -1));
     const double v = lua_tonumber(L, -1);
     if (!std::isfinite(v))
       arg_error(L, 1, "series %d: %s[%d] is %s", series, what, (int)i, format_number(v).c_str());
@@ -83,8 +83,8 @@ std::string string_field(lua_State* L, int table, const char* name, int series =
   if (type != LUA_TNIL && type != LUA_TSTRING) {
     if (series > 0)
       arg_error(L, 1, "series %d: field '%s' must be a string, got %s", series, name,
-                luaL_typename(L, -1));
-    arg_error(L, 1, "field '%s' must be a string, got %s", name, luaL_typename(L, -1));
+                value_type_name(L, -1));
+    arg_error(L, 1, "field '%s' must be a string, got %s", name, value_type_name(L, -1));
   }
   std::string value = type == LUA_TSTRING ? lua_tostring(L, -1) : "";
   lua_pop(L, 1);
@@ -99,7 +99,7 @@ int size_field(lua_State* L, const char* name, int lo, int hi, int fallback) {
     return fallback;
   }
   if (type != LUA_TNUMBER)
-    arg_error(L, 1, "field '%s' must be a number, got %s", name, luaL_typename(L, -1));
+    arg_error(L, 1, "field '%s' must be a number, got %s", name, value_type_name(L, -1));
   const double x = lua_tonumber(L, -1);
   lua_pop(L, 1);
   if (!(x >= lo && x <= hi && x == std::floor(x)))  // NaN fails too; checked before any cast
@@ -124,7 +124,7 @@ void check_keys(lua_State* L, int table, const char* const* fields, lua_Integer 
     std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2)
                       : lua_type(L, -2) == LUA_TNUMBER
                           ? format_number(lua_tonumber(L, -2))
-                          : std::string("a ") + luaL_typename(L, -2) + " key";
+                          : std::string("a ") + value_type_name(L, -2) + " key";
     std::string list;
     for (const char* const* f = fields; *f; ++f) list += std::string(list.empty() ? "" : ", ") + *f;
     if (series > 0)
@@ -160,7 +160,7 @@ Chart read_chart(lua_State* L) {
   if (count == 0) arg_error(L, 1, "at least one series {x = {...}, y = {...}} expected");
   for (lua_Integer s = 1; s <= count; ++s) {
     if (lua_rawgeti(L, 1, s) != LUA_TTABLE)
-      arg_error(L, 1, "series %d must be a table, got %s", (int)s, luaL_typename(L, -1));
+      arg_error(L, 1, "series %d must be a table, got %s", (int)s, value_type_name(L, -1));
     const int table = lua_gettop(L);
     static const char* const fields[] = {"x", "y", "label", nullptr};
     check_keys(L, table, fields, -1, static_cast<int>(s));

@@ -21,7 +21,6 @@ namespace rigidlab::lua {
 namespace {
 
 const char world_metatable_key = 0;
-inline constexpr std::uint64_t world_tag = 0x776f'726c'6472'6c62ULL;
 constexpr int bodies_slot = 1;
 constexpr int callbacks_slot = 2;
 // w:step(dt, n): n is bounded so a typo cannot start a run of years; long runs can be split.
@@ -66,7 +65,7 @@ Enum check_option(lua_State* L, int arg, const char* const (&names)[N], const ch
   std::string choices;
   for (std::size_t i = 0; i < N; ++i) choices += std::string(i ? ", " : "") + "'" + names[i] + "'";
   const std::string got =
-      is_string ? "'" + std::string(lua_tostring(L, -1)) + "'" : luaL_typename(L, -1);
+      is_string ? "'" + std::string(lua_tostring(L, -1)) + "'" : value_type_name(L, -1);
   if (in_table)
     arg_error(L, arg, "field '%s' must be one of %s, got %s", what, choices.c_str(), got.c_str());
   luaL_error(L, "world.%s must be one of %s, got %s", what, choices.c_str(), got.c_str());
@@ -233,8 +232,7 @@ std::size_t field_member(lua_State* L, LuaWorld& w, const char* name, bool requi
   }
   BodyHandle* handle = test_body(L, -1);
   if (handle == nullptr) {
-    const char* got = luaL_getmetafield(L, -1, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
-                                                                         : luaL_typename(L, -1);
+    const char* got = value_type_name(L, -1);
     arg_error(L, 2, "field '%s' must be a body, got %s", name, got);
   }
   if (handle->store.get() != &w.world.store())
@@ -549,8 +547,7 @@ int world_newindex(lua_State* L) {
   if (is("gravity")) {
     const Vec3* g = test_vec3(L, 3);
     if (g == nullptr) {
-      const char* got = luaL_getmetafield(L, 3, "__name") == LUA_TSTRING ? lua_tostring(L, -1)
-                                                                          : luaL_typename(L, 3);
+      const char* got = value_type_name(L, 3);
       luaL_error(L, "world.gravity: vec3 expected, got %s", got);
     }
     if (!is_finite(*g))

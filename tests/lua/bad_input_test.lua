@@ -64,19 +64,6 @@ local KNOWN_FAILURES = {
   ["w.colour = 1"] = "lua/world.cpp",
   ["return w.colour"] = "lua/world.cpp",
   ["local w2 = world{} w2:add_force(function(x) x:step(0.01) end) w2:step(0.01)"] = "lua/world.cpp",
-  ["vec3.dot(setmetatable({}, {__name = 'vec3'}), v)"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(v, debug.getmetatable(m)) return v:get(1, 1)"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(m, debug.getmetatable(v)) return m.x"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(b, debug.getmetatable(w)) return b:step(0.1)"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(w, debug.getmetatable(b)) return w:apply_force(v)"] = "lua/binding.cpp type_error, lua/body.cpp check_body_handle",
-  ["debug.setmetatable(b, debug.getmetatable(v)) b.x = 1"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(v, {__index = quat}) return v:norm()"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(v, {__index = world}) return v:bodies()"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(b, {__index = mat3}) return b:inverse()"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(w, {__index = inertia}) return w:solid_sphere(1)"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(q, {__index = plot}) return q:lines()"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(q, {__index = csv}) return q:write({}, {})"] = "lua/binding.cpp type_error",
-  ["debug.setmetatable(m, {__index = _G}) return m:lesson()"] = "lua/binding.cpp type_error",
 }
 
 local cases = {}
