@@ -14,58 +14,27 @@
 #include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/sandbox.hpp"
+#include "lua/text_layout.hpp"
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
+using lua::display_width;
 
 namespace {
 
+// The terminal's columns, else $COLUMNS, else 0 (unknown: output to a file or a pipe).
 int terminal_width() {
   winsize size{};
-  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col >= 20) return size.ws_col;
-  if (const char* columns = std::getenv("COLUMNS")) return std::max(20, std::atoi(columns));
-  return 80;
+  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  if (const char* columns = std::getenv("COLUMNS")) return std::max(0, std::atoi(columns));
+  return 0;
 }
 
-// Display width of UTF-8 text: counts code points, not bytes.
-size_t display_width(const std::string& text) {
-  size_t width = 0;
-  for (unsigned char c : text) width += (c & 0xC0) != 0x80;
-  return width;
-}
-
-// Wraps each paragraph of `text` to `width` columns with `indent`; blank lines separate
-// paragraphs and lines starting with spaces are kept as they are (formulas, lists).
-std::string wrap(const std::string& text, size_t width, const std::string& indent) {
-  std::string out;
-  std::istringstream lines(text);
-  std::string line, paragraph;
-  auto flush = [&] {
-    std::istringstream words(paragraph);
-    std::string word, current;
-    for (; words >> word;) {
-      if (!current.empty() && display_width(indent + current + " " + word) > width) {
-        out += indent + current + "\n";
-        current.clear();
-      }
-      current += (current.empty() ? "" : " ") + word;
-    }
-    if (!current.empty()) out += indent + current + "\n";
-    paragraph.clear();
-  };
-  while (std::getline(lines, line)) {
-    if (line.find_first_not_of(" \t") == std::string::npos) {
-      flush();
-      out += "\n";
-    } else if (line[0] == ' ') {
-      flush();
-      out += indent + line + "\n";
-    } else {
-      paragraph += " " + line;
-    }
-  }
-  flush();
-  return out;
+// Columns a lesson is laid out in: the terminal's, at least 40 (narrower wraps every few
+// words) and at most 100 (longer lines are hard to read); 80 when unknown.
+int lesson_width() {
+  const int columns = terminal_width();
+  return columns == 0 ? 80 : std::clamp(columns, 40, 100);
 }
 
 bool interactive() { return isatty(STDIN_FILENO) && isatty(STDOUT_FILENO); }
@@ -83,12 +52,17 @@ void print_step_header(lua_State* L, int lesson, int number, int count) {
   lua_getfield(L, lesson, "steps");
   lua_geti(L, -1, number);
   const int step = lua_gettop(L);
-  const int width = std::min(terminal_width(), 100);
-  const std::string title = "Step " + std::to_string(number) + "/" + std::to_string(count) +
+  const int width = lesson_width();
+  const std::string title = "-- Step " + std::to_string(number) + "/" + std::to_string(count) +
                             ": " + field_string(L, step, "title");
-  std::string rule(std::max<int>(3, width - static_cast<int>(display_width(title)) - 4), '-');
-  std::printf("\n-- %s %s\n\n", title.c_str(), rule.c_str());
-  std::fputs(wrap(field_string(L, step, "text"), width, "  ").c_str(), stdout);
+  // "-- Step 2/5: title -----" filled to the width; a title too long for one line is wrapped
+  const int rule = width - static_cast<int>(display_width(title)) - 1;
+  if (rule >= 3)
+    std::printf("\n%s %s\n\n", title.c_str(), std::string(rule, '-').c_str());
+  else
+    std::printf("\n%s\n", lua::fit_words_after("-- ", title.substr(3), width).c_str());
+  std::fputs(lua::fit_paragraphs(field_string(L, step, "text"), "  ", width).c_str(),
+             stdout);
   const std::string formula = field_string(L, step, "formula");
   if (!formula.empty()) {
     std::printf("\n");
@@ -97,6 +71,22 @@ void print_step_header(lua_State* L, int lesson, int number, int count) {
   }
   std::printf("\n");
   lua_pop(L, 2);
+}
+
+// "id — title" and the source, one document per line (a source lists them split by "; "),
+// each wrapped to the width under its start.
+void print_lesson_heading(lua_State* L, int lesson, int width) {
+  const std::string id = field_string(L, lesson, "id") + " — ";
+  std::fputs(lua::fit_words_after(id, field_string(L, lesson, "title"), width).c_str(), stdout);
+  const std::string source = field_string(L, lesson, "source");
+  const char* label = "  source: ";
+  for (size_t start = 0; start <= source.size();) {
+    size_t end = source.find("; ", start);
+    if (end == std::string::npos) end = source.size();
+    std::fputs(lua::fit_words_after(label, source.substr(start, end - start), width).c_str(), stdout);
+    label = "          ";
+    start = end + 2;
+  }
 }
 
 // A lesson being stepped through, and how it went.
@@ -123,8 +113,8 @@ void run_timed_step(lua_State* L, int lesson, int ctx, int number, LessonRun& ru
 int present_protected(lua_State* L) {
   LessonRun& run = *static_cast<LessonRun*>(lua_touserdata(L, 1));
   lua_settop(L, 0);
-  rigidlab::lua::open_all(L);
-  if (!trusted(*run.path)) rigidlab::lua::apply_sandbox(L);
+  lua::open_all(L);
+  if (!trusted(*run.path)) lua::apply_sandbox(L);
   std::string error;
   if (!load_lesson(L, *run.path, error)) {
     std::fflush(stdout);
@@ -134,10 +124,10 @@ int present_protected(lua_State* L) {
   }
   run.loaded = true;
   const int lesson = lua_gettop(L);
-  rigidlab::lua::LessonTally& tally = rigidlab::lua::push_lesson_context(L, false);
+  lua::LessonTally& tally = lua::push_lesson_context(L, false);
   const int ctx = lua_gettop(L);
-  std::printf("%s — %s\n  source: %s\n", field_string(L, lesson, "id").c_str(),
-              field_string(L, lesson, "title").c_str(), field_string(L, lesson, "source").c_str());
+  tally.width = lesson_width();
+  print_lesson_heading(L, lesson, tally.width);
   const int count = steps_count(L, lesson);
   for (int number = 1; number <= count;) {
     print_step_header(L, lesson, number, count);
@@ -212,7 +202,7 @@ std::vector<LessonInfo> read_lesson_infos() {
     lua_State* L = state.get();
     const TimedRun timed(L);
     lua_pushcfunction(L, [](lua_State* L) {
-      rigidlab::lua::open_all(L);
+      lua::open_all(L);
       return 0;
     });
     if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
@@ -228,11 +218,23 @@ std::vector<LessonInfo> read_lesson_infos() {
   return infos;
 }
 
+// One row per lesson: id, title and source in columns, fitted to the terminal: the source
+// column, cut short, when at least 20 columns are left beside the titles, else none (a lesson
+// shows its source in full at the top); titles are cut only when they alone do not fit.
+// Written to a file or a pipe (width unknown) nothing is cut.
 void print_lesson_table(const std::vector<LessonInfo>& infos, bool numbered) {
   size_t id_width = 2, title_width = 5;
   for (const auto& info : infos) {
     id_width = std::max(id_width, display_width(info.id));
     title_width = std::max(title_width, display_width(info.title));
+  }
+  const size_t columns = static_cast<size_t>(terminal_width());
+  size_t source_width = std::string::npos;
+  if (columns > 0) {
+    const size_t before_title = (numbered ? 5 : 0) + id_width + 2;  // "%3d  " id "  "
+    const size_t left = columns > before_title ? columns - before_title : 0;
+    title_width = std::min(title_width, std::max<size_t>(left, 12));
+    source_width = left >= title_width + 2 + 20 ? left - title_width - 2 : 0;
   }
   int number = 0;
   for (const auto& info : infos) {
@@ -242,8 +244,14 @@ void print_lesson_table(const std::vector<LessonInfo>& infos, bool numbered) {
       std::printf("%s  (cannot load: %s)\n", id.c_str(), info.error.c_str());
       continue;
     }
-    std::string title = info.title + std::string(title_width - display_width(info.title), ' ');
-    std::printf("%s  %s  %s\n", id.c_str(), title.c_str(), info.source.c_str());
+    std::string title = lua::truncate_to_width(info.title, title_width);
+    if (source_width == 0) {
+      std::printf("%s  %s\n", id.c_str(), title.c_str());
+      continue;
+    }
+    title += std::string(title_width - display_width(title), ' ');
+    const std::string source = lua::truncate_to_width(info.source, source_width);
+    std::printf("%s  %s  %s\n", id.c_str(), title.c_str(), source.c_str());
   }
 }
 

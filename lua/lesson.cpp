@@ -11,6 +11,7 @@
 
 #include "lua/binding.hpp"
 #include "lua/modules.hpp"
+#include "lua/text_layout.hpp"
 
 namespace rigidlab::lua {
 namespace {
@@ -40,63 +41,41 @@ void check_value(lua_State* L, int arg) {
   if (lua_isnone(L, arg)) arg_error(L, arg, "value expected");
 }
 
-// Display width of UTF-8 text in code points (labels hold ω, ², ✓).
-size_t display_width(const std::string& text) {
-  return static_cast<size_t>(std::count_if(text.begin(), text.end(),
-                                           [](unsigned char c) { return (c & 0xC0) != 0x80; }));
-}
-
 // `prefix` + `value` on as many lines as the width needs: one line when it fits, else broken
-// after the ", " separators of the value (a list, vector or matrix: a matrix breaks between
-// its rows first), each continuation line indented to where the value started.
+// after the ", " separators of the value, continuation lines lined up under its first entry. A
+// matrix breaks between its rows first, the rows lined up under the first one (one column in
+// from the outer parenthesis).
 std::string fit_value(const std::string& prefix, const std::string& value, size_t width) {
   if (display_width(prefix) + display_width(value) <= width) return prefix + value;
   const bool matrix = value.rfind("((", 0) == 0;
-  // a matrix's rows line up under its first row, one column in from the outer parenthesis
-  const std::string indent(display_width(prefix) + (matrix ? 1 : 0), ' ');
-  const std::string separator = matrix ? "), (" : ", ";
-  const size_t keep = matrix ? 2 : 1;  // ")," or "," stays at the end of the broken line
-  std::vector<std::string> pieces;
+  const std::string row_indent(display_width(prefix) + (matrix ? 1 : 0), ' ');
+  // entries line up under the first one, past "((", "(", "{" or "quat("
+  const size_t first_entry = value.find_first_not_of("({abcdefghijklmnopqrstuvwxyz");
+  const std::string entry_indent(
+      display_width(prefix) + (first_entry == std::string::npos ? 0 : first_entry), ' ');
+  std::vector<std::string> pieces;  // each keeps its "," (a matrix row its "),")
   for (size_t start = 0;;) {
-    const size_t at = value.find(separator, start);
+    const size_t at = value.find(", ", start);
     if (at == std::string::npos) {
       pieces.push_back(value.substr(start));
       break;
     }
-    pieces.push_back(value.substr(start, at + keep - start));
-    start = at + keep + 1;  // past the space
+    pieces.push_back(value.substr(start, at + 1 - start));
+    start = at + 2;
   }
-  std::string text = prefix, line = prefix;
-  for (size_t i = 0; i < pieces.size(); ++i) {
-    const bool first = i == 0;
-    if (!first && (matrix || display_width(line) + 1 + display_width(pieces[i]) > width)) {
-      text += "\n" + indent + pieces[i];
-      line = indent + pieces[i];
+  std::string text = prefix + pieces[0], line = text;
+  for (size_t i = 1; i < pieces.size(); ++i) {
+    const bool new_row = matrix && pieces[i - 1].size() >= 2 &&
+                         pieces[i - 1].compare(pieces[i - 1].size() - 2, 2, "),") == 0;
+    if (new_row || display_width(line) + 1 + display_width(pieces[i]) > width) {
+      line = (new_row ? row_indent : entry_indent) + pieces[i];
+      text += "\n" + line;
     } else {
-      text += (first ? "" : " ") + pieces[i];
-      line += (first ? "" : " ") + pieces[i];
+      line += " " + pieces[i];
+      text += " " + pieces[i];
     }
   }
   return text;
-}
-
-// Words of `text` on lines of at most `width` columns, each starting with `indent`.
-std::string fit_words(const std::string& text, const std::string& indent, size_t width) {
-  std::string out, line;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t end = text.find(' ', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(start, end - start);
-    start = end + 1;
-    if (word.empty()) continue;
-    if (!line.empty() && display_width(indent + line + " " + word) > width) {
-      out += indent + line + "\n";
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-  }
-  return out + indent + line + "\n";
 }
 
 // The numbers of a value that ctx:expect can compare: a number, vec3, quat, mat3 or a table of
@@ -163,9 +142,17 @@ int context_show(lua_State* L) {
   check_value(L, 3);
   check_no_extra_args(L, 3);
   const std::string prefix = std::string("  ") + label + " =";
-  if (test_mat3(L, 3) != nullptr)  // on its rows, under the label
-    write(tally, prefix + format_value(L, 3, "    ") + "\n");
-  else
+  if (test_mat3(L, 3) != nullptr) {  // on its rows, under the label
+    std::string text = prefix;
+    const std::string rows = format_value(L, 3, "    ");  // "\n    (..)" three times
+    for (size_t start = rows.find("\n    ("); start != std::string::npos;) {
+      const size_t end = rows.find("\n", start + 1);
+      const std::string row = rows.substr(start + 5, end == std::string::npos ? end : end - start - 5);
+      text += "\n" + fit_value("    ", row, tally.width);
+      start = end;
+    }
+    write(tally, text + "\n");
+  } else
     write(tally, fit_value(prefix + " ", format_value(L, 3, ""), tally.width) + "\n");
   return 0;
 }
@@ -210,7 +197,7 @@ int context_expect(lua_State* L) {
   if (display_width(mark + one_line) <= static_cast<size_t>(tally.width)) {
     write(tally, mark + one_line + "\n");
   } else {  // label, then got and want on lines of their own, aligned
-    write(tally, mark + label + (detail.empty() ? "" : detail) + "\n" +
+    write(tally, fit_words_after(mark, label + detail, tally.width) +
                      fit_value("      got  ", got_text, tally.width) + "\n" +
                      fit_value("      want ", want_text, tally.width) + "\n");
   }
