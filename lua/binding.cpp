@@ -149,6 +149,23 @@ void field_type_error(lua_State* L, const char* type, const char* name, const ch
   field_error(L, type, name, "%s expected, got %s", expected, value_type_name(L, value_index));
 }
 
+double check_field_finite(lua_State* L, const char* type, const char* name, int value_index) {
+  if (lua_type(L, value_index) != LUA_TNUMBER)
+    field_type_error(L, type, name, "number", value_index);
+  const double x = lua_tonumber(L, value_index);
+  if (!std::isfinite(x))
+    field_error(L, type, name, "must be finite, got %s", format_number(x).c_str());
+  return x;
+}
+
+const Vec3& check_field_vec3(lua_State* L, const char* type, const char* name, int value_index) {
+  const Vec3* v = test_vec3(L, value_index);
+  if (v == nullptr) field_type_error(L, type, name, "vec3", value_index);
+  if (!is_finite(*v))
+    field_error(L, type, name, "must be finite, got %s", luaL_tolstring(L, value_index, nullptr));
+  return *v;
+}
+
 const char* push_key_name(lua_State* L, int index) {
   switch (lua_type(L, index)) {
     case LUA_TSTRING:

@@ -61,6 +61,12 @@ const char* value_type_name(lua_State* L, int index);
 // field_error with "<expected> expected, got <type of the value at value_index>".
 [[noreturn]] void field_type_error(lua_State* L, const char* type, const char* name,
                                    const char* expected, int value_index);
+// The value at `value_index` assigned to field NAME of a TYPE, checked as field_error reports
+// it: a finite number (v.x = n: "number expected, got string", "must be finite, got nan"), or a
+// vec3 with finite components (b.position = p, w.gravity = g; a vec3 can hold inf, e.g. a row
+// of a static body's infinite tensor).
+double check_field_finite(lua_State* L, const char* type, const char* name, int value_index);
+const Vec3& check_field_vec3(lua_State* L, const char* type, const char* name, int value_index);
 // The key at `index` as a field name in messages, pushed: a string or a number as itself,
 // other values as "table: 0x..." (no __tostring is run). For "bad field '1' of vec3".
 const char* push_key_name(lua_State* L, int index);

@@ -31,9 +31,10 @@ const char* shape_name(ShapeKind kind) {
   return "none";
 }
 
-// A vec3 result that must be finite (huge inputs can overflow).
-void push_finite_result(lua_State* L, const Vec3& v) {
-  if (!is_finite(v)) function_error(L, "result is not finite (overflow)");
+// A vec3 result that must be finite (huge inputs can overflow); an overflow is blamed on
+// argument `arg` (the point of b:to_world(p), the body itself for b:linear_momentum()).
+void push_finite_result(lua_State* L, const Vec3& v, int arg) {
+  check_result(L, v, arg);
   push_vec3(L, v);
 }
 
@@ -257,44 +258,33 @@ int body_index(lua_State* L) {
     lua_pushvalue(L, 2);
     if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
   }
-  luaL_error(L, "body has no field '%s' (fields: %s; methods: see help(\"body\"))",
-             luaL_tolstring(L, 2, nullptr), field_list);
-  return 0;
+  field_error(L, "body", push_key_name(L, 2), "no such field (fields: %s; methods: see "
+              "help(\"body\"))", field_list);
 }
 
-// The vec3 being assigned to body.<key>: finite (a vec3 can hold inf, e.g. a row of a static
-// body's infinite tensor).
-const Vec3& new_vec3(lua_State* L, const char* key) {
-  const Vec3* v = test_vec3(L, 3);
-  if (v == nullptr) {
-    lua_pushvalue(L, 3);
-    luaL_error(L, "body.%s: vec3 expected, got %s", key, top_type_name(L));
-  }
-  if (!is_finite(*v))
-    luaL_error(L, "body.%s must be finite, got %s", key, luaL_tolstring(L, 3, nullptr));
-  return *v;
-}
-
+// The quat being assigned to b.orientation, normalised.
 Quat new_orientation(lua_State* L) {
   const Quat* q = test_quat(L, 3);
-  if (q == nullptr) {
-    lua_pushvalue(L, 3);
-    luaL_error(L, "body.orientation: quat expected, got %s", top_type_name(L));
-  }
-  if (!is_finite(*q)) luaL_error(L, "body.orientation must be finite");
-  if (is_zero(*q)) luaL_error(L, "body.orientation: the zero quaternion is not a rotation");
+  if (q == nullptr) field_type_error(L, "body", "orientation", "quat", 3);
+  if (!is_finite(*q))
+    field_error(L, "body", "orientation", "must be finite, got %s", luaL_tolstring(L, 3, nullptr));
+  if (is_zero(*q)) field_error(L, "body", "orientation", "the zero quaternion is not a rotation");
   return unit(*q);
 }
 
 // b.restitution = e or b.friction = μ, the value at index 3 (engine/plane.hpp's rules).
 void set_material(lua_State* L, Body& b, bool restitution) {
   const char* key = restitution ? "restitution" : "friction";
-  if (lua_type(L, 3) != LUA_TNUMBER)
-    luaL_error(L, "body.%s: number expected, got %s", key, value_type_name(L, 3));
+  if (lua_type(L, 3) != LUA_TNUMBER) field_type_error(L, "body", key, "number", 3);
   const double x = lua_tonumber(L, 3);
   const std::string problem = restitution ? material_problem(x, b.friction)
                                           : material_problem(b.restitution, x);
-  if (!problem.empty()) luaL_error(L, "body.%s", problem.c_str());
+  if (!problem.empty()) {
+    // "friction must be finite and >= 0, got -1": the field's name is in the form already.
+    const std::size_t length = std::strlen(key);
+    const std::size_t skip = problem.compare(0, length, key) == 0 ? length + 1 : 0;
+    field_error(L, "body", key, "%s", problem.c_str() + skip);
+  }
   (restitution ? b.restitution : b.friction) = x;
 }
 
@@ -307,14 +297,14 @@ int body_newindex(lua_State* L) {
                      is("angular_velocity") || material;
   if (!state) {
     if (push_field(L, handle.body(), key))
-      luaL_error(L, "body.%s is read-only (mass properties and shape are fixed when the body "
-                    "is made)", key);
-    luaL_error(L, "body has no field '%s' to set (settable: position, orientation, velocity, "
-                  "angular_velocity, restitution, friction)", luaL_tolstring(L, 2, nullptr));
+      field_error(L, "body", key, "read-only (mass properties and shape are fixed when the body "
+                  "is made)");
+    field_error(L, "body", push_key_name(L, 2), "no such field (settable: position, orientation, "
+                "velocity, angular_velocity, restitution, friction)");
   }
   if (handle.store->stepping())
-    luaL_error(L, "cannot set body.%s during world:step (force callbacks may only apply forces)",
-               key);
+    field_error(L, "body", key, "cannot be set during world:step (force callbacks may only "
+                "apply forces)");
   if (is("orientation")) {
     const Quat q = new_orientation(L);
     handle.body().orientation = q;
@@ -324,14 +314,14 @@ int body_newindex(lua_State* L) {
     set_material(L, handle.body(), is("restitution"));
     return 0;
   }
-  const Vec3 v = new_vec3(L, key);
+  const Vec3 v = check_field_vec3(L, "body", key, 3);
   Body& b = handle.body();
   if (is("position")) {
     b.position = v;
     return 0;
   }
   if (is_static(b) && v != Vec3::Zero())
-    luaL_error(L, "body.%s of a static body must stay zero (it never moves)", key);
+    field_error(L, "body", key, "a static body's %s must stay zero (it never moves)", key);
   (is("velocity") ? b.velocity : b.angular_velocity) = v;
   return 0;
 }
@@ -385,7 +375,7 @@ int body_apply_force(lua_State* L) {
   Body candidate = b;
   apply_force(candidate, f, point);
   if (!is_finite(candidate.force) || !is_finite(candidate.torque))
-    function_error(L, "the accumulated force or torque would overflow");
+    arg_error(L, 2, "the accumulated force or torque would overflow");
   b.force = candidate.force;
   b.torque = candidate.torque;
   return 0;
@@ -395,15 +385,16 @@ int body_apply_torque(lua_State* L) {
   Body& b = check_body(L, 1);
   const Vec3 t = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  if (!is_finite(Vec3(b.torque + t))) function_error(L, "the accumulated torque would overflow");
+  if (!is_finite(Vec3(b.torque + t))) arg_error(L, 2, "the accumulated torque would overflow");
   apply_torque(b, t);
   return 0;
 }
 
-// Impulses change velocities now; the new velocities must be finite.
+// Impulses change velocities now; the new velocities must be finite, else the impulse (the
+// first argument after self) is blamed.
 void commit_velocities(lua_State* L, Body& b, const Body& candidate) {
   if (!is_finite(candidate.velocity) || !is_finite(candidate.angular_velocity))
-    function_error(L, "the impulse would make the velocity non-finite");
+    arg_error(L, 2, "the impulse would make the velocity non-finite");
   b.velocity = candidate.velocity;
   b.angular_velocity = candidate.angular_velocity;
 }
@@ -437,7 +428,7 @@ int point_method(lua_State* L) {
   const Body& b = check_body(L, 1);
   const Vec3& p = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  push_finite_result(L, compute(b, p));
+  push_finite_result(L, compute(b, p), 2);
   return 1;
 }
 
@@ -445,7 +436,7 @@ template <Vec3 (*compute)(const Body&)>
 int vec3_method(lua_State* L) {
   const Body& b = check_body(L, 1);
   check_no_extra_args(L, 1);
-  push_finite_result(L, compute(b));
+  push_finite_result(L, compute(b), 1);
   return 1;
 }
 

@@ -74,7 +74,7 @@ void read_contact_setting(lua_State* L, int arg, const char* name, bool in_table
   if (ok) return;
   const std::string got = shown(L);
   if (in_table) arg_error(L, arg, "field '%s' must be %s, got %s", name, s.rule, got.c_str());
-  luaL_error(L, "bad field '%s' of world (must be %s, got %s)", name, s.rule, got.c_str());
+  field_error(L, "world", name, "must be %s, got %s", s.rule, got.c_str());
 }
 
 void push_contact_setting(lua_State* L, const char* name, const ContactSettings& settings) {

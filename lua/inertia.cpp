@@ -28,20 +28,35 @@ auto engine_call(lua_State* L, F&& f) -> decltype(f()) {
   function_error(L, "%s", message.c_str());
 }
 
-// Results are pushed only when finite: huge inputs can overflow.
-template <class T>
-void check_result(lua_State* L, const T& value) {
-  if (!is_finite(value))
-    function_error(L, "result is not finite (overflow: the values are too large)");
+// Results are pushed only when finite: huge inputs can overflow. The overflow is blamed on
+// argument `arg`, the one that made the result too large (a shape's size: see largest_arg).
+void push_result(lua_State* L, const Mat3& m, int arg) {
+  check_result(L, m, arg);
+  push_mat3(L, m);
 }
-void push_result(lua_State* L, const Mat3& m) { check_result(L, m); push_mat3(L, m); }
-void push_result(lua_State* L, const Vec3& v) { check_result(L, v); push_vec3(L, v); }
-void push_result(lua_State* L, double x) { check_result(L, x); lua_pushnumber(L, x); }
+void push_result(lua_State* L, const Vec3& v, int arg) {
+  check_result(L, v, arg);
+  push_vec3(L, v);
+}
+void push_result(lua_State* L, double x, int arg) {
+  if (!std::isfinite(x)) overflow_error(L, arg, "the result", "it");
+  lua_pushnumber(L, x);
+}
 
+// Of the numbers at first..last (already checked), the argument of the largest: the size that
+// makes a tensor m (a² + b²)/k overflow.
+int largest_arg(lua_State* L, int first, int last) {
+  int largest = first;
+  for (int arg = first + 1; arg <= last; ++arg)
+    if (lua_tonumber(L, arg) > lua_tonumber(L, largest)) largest = arg;
+  return largest;
+}
+
+// The results of inertia.points and inertia.composite; an overflow blames the list.
 void push_mass_properties(lua_State* L, const MassProperties& p) {
-  push_result(L, p.mass);
-  push_result(L, p.com);
-  push_result(L, p.inertia);
+  push_result(L, p.mass, 1);
+  push_result(L, p.com, 1);
+  push_result(L, p.inertia, 1);
 }
 
 // A user-supplied inertia tensor: a mat3 that a real body (or an idealised particle or rod)
@@ -60,7 +75,7 @@ int mass_radius(lua_State* L) {
   check_no_extra_args(L, 2);
   const double m = check_positive(L, 1, "mass");
   const double r = check_positive(L, 2, "radius");
-  push_result(L, engine_call(L, [&] { return shape(m, r); }));
+  push_result(L, engine_call(L, [&] { return shape(m, r); }), 2);
   return 1;
 }
 
@@ -72,7 +87,7 @@ int mass_radius_height(lua_State* L) {
   const double r = check_positive(L, 2, "radius");
   const double h = zero_height_allowed ? check_nonnegative(L, 3, "height")
                                        : check_positive(L, 3, "height");
-  push_result(L, engine_call(L, [&] { return shape(m, r, h); }));
+  push_result(L, engine_call(L, [&] { return shape(m, r, h); }), largest_arg(L, 2, 3));
   return 1;
 }
 
@@ -80,6 +95,7 @@ int mass_radius_height(lua_State* L) {
 int solid_box(lua_State* L) {
   const double m = check_positive(L, 1, "mass");
   Vec3 size;
+  int size_arg = 2;  // blamed for an overflow
   if (const Vec3* v = test_vec3(L, 2)) {
     check_no_extra_args(L, 2);
     size = *v;
@@ -91,8 +107,9 @@ int solid_box(lua_State* L) {
     check_no_extra_args(L, 4);
     size = Vec3(check_positive(L, 2, "width"), check_positive(L, 3, "height"),
                 check_positive(L, 4, "depth"));
+    size_arg = largest_arg(L, 2, 4);
   }
-  push_result(L, engine_call(L, [&] { return inertia_solid_box(m, size); }));
+  push_result(L, engine_call(L, [&] { return inertia_solid_box(m, size); }), size_arg);
   return 1;
 }
 
@@ -102,7 +119,8 @@ int solid_ellipsoid(lua_State* L) {
   const double a = check_positive(L, 2, "semi-axis a");
   const double b = check_positive(L, 3, "semi-axis b");
   const double c = check_positive(L, 4, "semi-axis c");
-  push_result(L, engine_call(L, [&] { return inertia_solid_ellipsoid(m, a, b, c); }));
+  push_result(L, engine_call(L, [&] { return inertia_solid_ellipsoid(m, a, b, c); }),
+              largest_arg(L, 2, 4));
   return 1;
 }
 
@@ -212,7 +230,7 @@ int point(lua_State* L) {
   check_no_extra_args(L, 2);
   const double m = check_positive(L, 1, "mass");
   const Vec3& r = check_vec3(L, 2);
-  push_result(L, engine_call(L, [&] { return inertia_point(m, r); }));
+  push_result(L, engine_call(L, [&] { return inertia_point(m, r); }), 2);
   return 1;
 }
 
@@ -221,7 +239,7 @@ int parallel_axis(lua_State* L) {
   const Mat3& I = check_tensor(L, 1);
   const double m = check_positive(L, 2, "mass");
   const Vec3& d = check_vec3(L, 3);
-  push_result(L, rigidlab::parallel_axis(I, m, d));
+  push_result(L, rigidlab::parallel_axis(I, m, d), 3);
   return 1;
 }
 
@@ -230,14 +248,14 @@ int rotate(lua_State* L) {
   const Mat3& I = check_tensor(L, 1);
   if (const Quat* q = test_quat(L, 2)) {
     if (is_zero(*q)) arg_error(L, 2, "the rotation quaternion must be non-zero");
-    push_result(L, engine_call(L, [&] { return rotate_inertia(I, *q); }));
+    push_result(L, engine_call(L, [&] { return rotate_inertia(I, *q); }), 1);
     return 1;
   }
   const Mat3* R = test_mat3(L, 2);
   if (R == nullptr) type_error(L, 2, "mat3 or quat");
   const std::string problem = rotation_problem(*R);
   if (!problem.empty()) arg_error(L, 2, "R must be a rotation: %s", problem.c_str());
-  push_result(L, rotate_inertia(I, *R));
+  push_result(L, rotate_inertia(I, *R), 1);
   return 1;
 }
 
@@ -248,15 +266,15 @@ int about_axis(lua_State* L) {
   if (!is_finite(n))
     arg_error(L, 2, "the axis must be finite, got %s", luaL_tolstring(L, 2, nullptr));
   if (is_zero(n)) arg_error(L, 2, "the axis must be a non-zero vector");
-  push_result(L, engine_call(L, [&] { return rigidlab::about_axis(I, n); }));
+  push_result(L, engine_call(L, [&] { return rigidlab::about_axis(I, n); }), 1);
   return 1;
 }
 
 int principal(lua_State* L) {
   check_no_extra_args(L, 1);
   const SymmetricEigen e = principal_inertia(check_tensor(L, 1));
-  push_result(L, e.values);
-  push_result(L, e.axes);
+  push_result(L, e.values, 1);
+  push_result(L, e.axes, 1);
   return 2;
 }
 
@@ -330,10 +348,10 @@ int mesh(lua_State* L) {
   if (!problem.empty()) arg_error(L, 2, "%s", problem.c_str());
   const MeshMassProperties p =
       engine_call(L, [&] { return inertia_mesh(vertices, triangles, density); });
-  push_result(L, p.mass);
-  push_result(L, p.com);
-  push_result(L, p.inertia);
-  push_result(L, p.volume);
+  push_result(L, p.mass, 1);
+  push_result(L, p.com, 1);
+  push_result(L, p.inertia, 1);
+  push_result(L, p.volume, 1);
   return 4;
 }
 

@@ -10,8 +10,10 @@
 namespace rigidlab::lua {
 namespace {
 
-Quat& push_finite_quat(lua_State* L, const Quat& q) {
-  if (!is_finite(q)) function_error(L, "result is not finite (overflow or invalid operation)");
+// Pushes a result that must be finite; an overflow is blamed on argument `arg` (the operand
+// that made it too large), so the error names the function and the argument.
+Quat& push_finite_quat(lua_State* L, const Quat& q, int arg) {
+  check_result(L, q, arg);
   return push_quat(L, q);
 }
 
@@ -22,7 +24,8 @@ Quat check_rotation(lua_State* L, int arg) {
   return unit(q);
 }
 
-// quat(w, x, y, z); quat() is the identity.
+// quat(w, x, y, z); quat() is the identity. The first missing component is named: "bad
+// argument #4 to 'quat' (number expected, got no value)".
 int quat_call(lua_State* L) {
   lua_remove(L, 1);  // the quat table itself
   if (lua_gettop(L) == 0) {
@@ -30,9 +33,10 @@ int quat_call(lua_State* L) {
     return 1;
   }
   check_no_extra_args(L, 4);
-  if (lua_gettop(L) != 4) function_error(L, "4 numbers (w, x, y, z) expected, got %d", lua_gettop(L));
-  push_quat(L, Quat(check_finite(L, 1, "w"), check_finite(L, 2, "x"), check_finite(L, 3, "y"),
-                    check_finite(L, 4, "z")));
+  static const char* const names[] = {"w", "x", "y", "z"};
+  double c[4];
+  for (int i = 0; i < 4; ++i) c[i] = check_finite(L, i + 1, names[i]);  // in order
+  push_quat(L, Quat(c[0], c[1], c[2], c[3]));
   return 1;
 }
 
@@ -93,17 +97,15 @@ int quat_index(lua_State* L) {
   }
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  luaL_error(L, "quat has no field '%s' (fields: w, x, y, z; methods: see help(\"quat\"))",
-             luaL_tolstring(L, 2, nullptr));
-  return 0;
+  field_error(L, "quat", push_key_name(L, 2),
+              "no such field (fields: w, x, y, z; methods: see help(\"quat\"))");
 }
 
 int quat_newindex(lua_State* L) {
   Quat& q = check_quat(L, 1);
   const int i = component_index(L, 2);
-  if (i < 0)
-    luaL_error(L, "quat has no field '%s' to set (fields: w, x, y, z)", luaL_tolstring(L, 2, nullptr));
-  component(q, i) = check_finite(L, 3, lua_tostring(L, 2));
+  if (i < 0) field_error(L, "quat", push_key_name(L, 2), "no such field (fields: w, x, y, z)");
+  component(q, i) = check_field_finite(L, "quat", lua_tostring(L, 2), 3);
   return 0;
 }
 
@@ -117,14 +119,14 @@ void check_two_quat(lua_State* L, const Quat*& a, const Quat*& b) {
 int quat_add(lua_State* L) {
   const Quat *a, *b;
   check_two_quat(L, a, b);
-  push_finite_quat(L, Quat(a->coeffs() + b->coeffs()));
+  push_finite_quat(L, Quat(a->coeffs() + b->coeffs()), 2);
   return 1;
 }
 
 int quat_sub(lua_State* L) {
   const Quat *a, *b;
   check_two_quat(L, a, b);
-  push_finite_quat(L, Quat(a->coeffs() - b->coeffs()));
+  push_finite_quat(L, Quat(a->coeffs() - b->coeffs()), 2);
   return 1;
 }
 
@@ -138,15 +140,17 @@ int quat_mul(lua_State* L) {
   const Quat* a = test_quat(L, 1);
   const Quat* b = test_quat(L, 2);
   if (a != nullptr && b != nullptr) {
-    push_finite_quat(L, *a * *b);
+    push_finite_quat(L, *a * *b, 2);
   } else if (a != nullptr) {
     if (test_vec3(L, 2) != nullptr)
       arg_error(L, 2, "quat * vec3 is not defined: use q:rotate(v)");
     if (lua_type(L, 2) != LUA_TNUMBER) type_error(L, 2, "quat or number");
-    push_finite_quat(L, Quat(a->coeffs() * lua_tonumber(L, 2)));
+    const double s = check_finite(L, 2, "factor");
+    push_finite_quat(L, Quat(a->coeffs() * s), 2);
   } else {
     if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "quat or number");
-    push_finite_quat(L, Quat(check_quat(L, 2).coeffs() * lua_tonumber(L, 1)));
+    const double s = check_finite(L, 1, "factor");
+    push_finite_quat(L, Quat(check_quat(L, 2).coeffs() * s), 1);
   }
   return 1;
 }
@@ -155,7 +159,7 @@ int quat_div(lua_State* L) {
   const Quat& q = check_quat(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a quat by zero");
-  push_finite_quat(L, Quat(q.coeffs() / s));
+  push_finite_quat(L, Quat(q.coeffs() / s), 2);
   return 1;
 }
 
@@ -200,7 +204,7 @@ int quat_inverse(lua_State* L) {
   const Quat& q = check_quat(L, 1);
   check_no_extra_args(L, 1);
   if (!(q.squaredNorm() > 0.0)) arg_error(L, 1, "the zero quaternion has no inverse");
-  push_finite_quat(L, Quat(q.conjugate().coeffs() / q.squaredNorm()));
+  push_finite_quat(L, Quat(q.conjugate().coeffs() / q.squaredNorm()), 1);
   return 1;
 }
 

@@ -9,9 +9,11 @@
 namespace rigidlab::lua {
 namespace {
 
-// Raises when an operation's result overflowed: a vec3 never holds NaN or Inf.
-Vec3& push_finite_vec3(lua_State* L, const Vec3& v) {
-  if (!is_finite(v)) function_error(L, "result is not finite (overflow or invalid operation)");
+// Pushes a result that must be finite (a vec3 never holds NaN or Inf); an overflow is blamed
+// on argument `arg` (the operand that made it too large), so the error names the function and
+// the argument.
+Vec3& push_finite_vec3(lua_State* L, const Vec3& v, int arg) {
+  check_result(L, v, arg);
   return push_vec3(L, v);
 }
 
@@ -49,17 +51,15 @@ int vec3_index(lua_State* L) {
   }
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  luaL_error(L, "vec3 has no field '%s' (fields: x, y, z; methods: see help(\"vec3\"))",
-             luaL_tolstring(L, 2, nullptr));
-  return 0;
+  field_error(L, "vec3", push_key_name(L, 2),
+              "no such field (fields: x, y, z; methods: see help(\"vec3\"))");
 }
 
 int vec3_newindex(lua_State* L) {
   Vec3& v = check_vec3(L, 1);
   const int i = component_index(L, 2);
-  if (i < 0)
-    luaL_error(L, "vec3 has no field '%s' to set (fields: x, y, z)", luaL_tolstring(L, 2, nullptr));
-  v[i] = check_finite(L, 3, lua_tostring(L, 2));
+  if (i < 0) field_error(L, "vec3", push_key_name(L, 2), "no such field (fields: x, y, z)");
+  v[i] = check_field_finite(L, "vec3", lua_tostring(L, 2), 3);
   return 0;
 }
 
@@ -74,14 +74,14 @@ void check_two_vec3(lua_State* L, const Vec3*& a, const Vec3*& b) {
 int vec3_add(lua_State* L) {
   const Vec3 *a, *b;
   check_two_vec3(L, a, b);
-  push_finite_vec3(L, *a + *b);
+  push_finite_vec3(L, *a + *b, 2);
   return 1;
 }
 
 int vec3_sub(lua_State* L) {
   const Vec3 *a, *b;
   check_two_vec3(L, a, b);
-  push_finite_vec3(L, *a - *b);
+  push_finite_vec3(L, *a - *b, 2);
   return 1;
 }
 
@@ -103,8 +103,8 @@ int vec3_mul(lua_State* L) {
   const int scalar_arg = 3 - vector_arg;
   if (lua_type(L, scalar_arg) != LUA_TNUMBER)
     type_error(L, scalar_arg, vector_arg == 1 ? "number (vec3 * number)" : "number");
-  const double s = lua_tonumber(L, scalar_arg);
-  push_finite_vec3(L, check_vec3(L, vector_arg) * s);
+  const double s = check_finite(L, scalar_arg, "factor");
+  push_finite_vec3(L, check_vec3(L, vector_arg) * s, scalar_arg);
   return 1;
 }
 
@@ -112,7 +112,7 @@ int vec3_div(lua_State* L) {
   const Vec3& v = check_vec3(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a vec3 by zero");
-  push_finite_vec3(L, v / s);
+  push_finite_vec3(L, v / s, 2);
   return 1;
 }
 
@@ -150,7 +150,7 @@ int vec3_cross(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   const Vec3& b = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  push_finite_vec3(L, a.cross(b));
+  push_finite_vec3(L, a.cross(b), 2);
   return 1;
 }
 
@@ -165,7 +165,7 @@ int vec3_normalized(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   check_no_extra_args(L, 1);
   if (is_zero(a)) arg_error(L, 1, "cannot normalize the zero vector");
-  push_finite_vec3(L, unit(a));
+  push_finite_vec3(L, unit(a), 1);
   return 1;
 }
 
@@ -174,7 +174,7 @@ int vec3_outer(lua_State* L) {
   const Vec3& b = check_vec3(L, 2);
   check_no_extra_args(L, 2);
   const Mat3 m = a * b.transpose();
-  if (!is_finite(m)) function_error(L, "result is not finite (overflow)");
+  check_result(L, m, 2);
   push_mat3(L, m);
   return 1;
 }

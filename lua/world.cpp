@@ -68,8 +68,7 @@ Enum check_option(lua_State* L, int arg, const char* const (&names)[N], const ch
       is_string ? "'" + std::string(lua_tostring(L, -1)) + "'" : value_type_name(L, -1);
   if (in_table)
     arg_error(L, arg, "field '%s' must be one of %s, got %s", what, choices.c_str(), got.c_str());
-  luaL_error(L, "world.%s must be one of %s, got %s", what, choices.c_str(), got.c_str());
-  return Enum{};
+  field_error(L, "world", what, "must be one of %s, got %s", choices.c_str(), got.c_str());
 }
 
 // A value as error messages show it: numbers as Lua prints them but with %.14g for floats
@@ -92,8 +91,8 @@ int check_substeps(lua_State* L, int arg, bool in_table) {
     if (in_table)
       arg_error(L, arg, "field 'substeps' must be an integer from 1 to %d, got %s",
                 World::max_substeps, got);
-    luaL_error(L, "world.substeps must be an integer from 1 to %d, got %s", World::max_substeps,
-               got);
+    field_error(L, "world", "substeps", "must be an integer from 1 to %d, got %s",
+                World::max_substeps, got);
   }
   return static_cast<int>(n);
 }
@@ -440,8 +439,8 @@ int world_step(lua_State* L) {
                 shown_value(L, 3));
   }
   check_no_extra_args(L, 3);
-  if (w.world.stepping())
-    function_error(L, "cannot step the world from inside its own step (a force callback)");
+  if (w.world.stepping())  // self is the bad argument: "calling 'world:step' on bad self (...)"
+    arg_error(L, 1, "the world is already stepping: a force callback cannot step its own world");
   lua_settop(L, 1);
   // The engine polls the stop check (Ctrl-C, a time limit) inside its long loops: a step of
   // any size can be stopped, and is then undone.
@@ -486,8 +485,9 @@ int world_energy(lua_State* L) {
   return 1;
 }
 
+// A total that must be finite; an overflow is blamed on the world (self).
 void push_finite_total(lua_State* L, const Vec3& v) {
-  if (!is_finite(v)) function_error(L, "result is not finite (overflow)");
+  check_result(L, v, 1);
   push_vec3(L, v);
 }
 
@@ -522,11 +522,10 @@ int world_index(lua_State* L) {
   else {
     lua_pushvalue(L, 2);
     if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-    luaL_error(L, "world has no field '%s' (fields: time, gravity, integrator, gyroscopic, "
-                  "substeps, iterations, position_iterations, restitution_threshold, slop, "
-                  "baumgarte, max_correction, speculative_distance; methods: see "
-                  "help(\"world\"))",
-               luaL_tolstring(L, 2, nullptr));
+    field_error(L, "world", push_key_name(L, 2),
+                "no such field (fields: time, gravity, integrator, gyroscopic, substeps, "
+                "iterations, position_iterations, restitution_threshold, slop, baumgarte, "
+                "max_correction, speculative_distance; methods: see help(\"world\"))");
   }
   return 1;
 }
@@ -535,24 +534,17 @@ int world_newindex(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
   const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
-  if (is("time")) luaL_error(L, "world.time is read-only (it advances with w:step)");
+  if (is("time")) field_error(L, "world", "time", "read-only (it advances with w:step)");
   if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps") &&
       !is_contact_setting(key))
-    luaL_error(L, "world has no field '%s' to set (settable: gravity, integrator, gyroscopic, "
-                  "substeps, iterations, position_iterations, restitution_threshold, slop, "
-                  "baumgarte, max_correction, speculative_distance)",
-               luaL_tolstring(L, 2, nullptr));
-  if (w.world.stepping()) luaL_error(L, "cannot set world.%s during world:step", key);
+    field_error(L, "world", push_key_name(L, 2),
+                "no such field (settable: gravity, integrator, gyroscopic, substeps, iterations, "
+                "position_iterations, restitution_threshold, slop, baumgarte, max_correction, "
+                "speculative_distance)");
+  if (w.world.stepping()) field_error(L, "world", key, "cannot be set during world:step");
   lua_settop(L, 3);
   if (is("gravity")) {
-    const Vec3* g = test_vec3(L, 3);
-    if (g == nullptr) {
-      const char* got = value_type_name(L, 3);
-      luaL_error(L, "world.gravity: vec3 expected, got %s", got);
-    }
-    if (!is_finite(*g))
-      luaL_error(L, "world.gravity must be finite, got %s", luaL_tolstring(L, 3, nullptr));
-    w.world.set_gravity(*g);
+    w.world.set_gravity(check_field_vec3(L, "world", "gravity", 3));
   } else if (is("integrator")) {
     // rk4 ignores the gyroscopic setting, so one that is not the default must be undone first
     // (as world{} refuses integrator = "rk4" with a gyroscopic field).
@@ -560,15 +552,15 @@ int world_newindex(lua_State* L) {
         check_option<3, Integrator>(L, 3, integrator_names, "integrator", false);
     const GyroscopicTerm gyroscopic = w.world.gyroscopic();
     if (integrator == Integrator::rk4 && gyroscopic != GyroscopicTerm::implicit)
-      luaL_error(L, "world.integrator = 'rk4' ignores world.gyroscopic = '%s' (rk4 always "
-                    "integrates the full Euler equations): set world.gyroscopic = 'implicit' "
-                    "first", gyroscopic_names[static_cast<int>(gyroscopic)]);
+      field_error(L, "world", "integrator", "'rk4' ignores world.gyroscopic = '%s' (rk4 always "
+                  "integrates the full Euler equations): set world.gyroscopic = 'implicit' first",
+                  gyroscopic_names[static_cast<int>(gyroscopic)]);
     w.world.set_integrator(integrator);
   } else if (is("gyroscopic")) {
     const GyroscopicTerm gyroscopic =
         check_option<3, GyroscopicTerm>(L, 3, gyroscopic_names, "gyroscopic", false);
     if (w.world.integrator() == Integrator::rk4)
-      luaL_error(L, "world.gyroscopic %s", gyroscopic_rk4_rule);
+      field_error(L, "world", "gyroscopic", "it %s", gyroscopic_rk4_rule);
     w.world.set_gyroscopic(gyroscopic);
   } else if (is_contact_setting(key)) {
     ContactSettings contact = w.world.contact_settings();

@@ -181,40 +181,50 @@ end)
 T.case("field errors", function()
   local b = body.sphere{mass = 1, radius = 1}
   T.fails(function() b.mass = 2 end,
-    "body.mass is read-only (mass properties and shape are fixed when the body is made)")
-  T.fails(function() b.inertia = mat3.identity() end, "body.inertia is read-only")
-  T.fails(function() b.inv_mass = 1 end, "body.inv_mass is read-only")
-  T.fails(function() b.radius = 2 end, "body.radius is read-only")
+    "bad field 'mass' of body (read-only (mass properties and shape are fixed when the body is "
+    .. "made))")
+  T.fails(function() b.inertia = mat3.identity() end, "bad field 'inertia' of body (read-only")
+  T.fails(function() b.inv_mass = 1 end, "bad field 'inv_mass' of body (read-only")
+  T.fails(function() b.radius = 2 end, "bad field 'radius' of body (read-only")
   T.fails(function() b.colour = 1 end,
-    "body has no field 'colour' to set (settable: position, orientation, velocity, angular_velocity, "
-    .. "restitution, friction)")
-  T.fails(function() return b.colour end, "body has no field 'colour' (fields: position, orientation")
-  T.fails(function() b.position = 1 end, "body.position: vec3 expected, got number")
-  T.fails(function() b.velocity = {1, 2, 3} end, "body.velocity: vec3 expected, got table")
-  T.fails(function() b.orientation = vec3(1, 0, 0) end, "body.orientation: quat expected, got vec3")
+    "bad field 'colour' of body (no such field (settable: position, orientation, velocity, "
+    .. "angular_velocity, restitution, friction))")
+  T.fails(function() return b.colour end,
+    "bad field 'colour' of body (no such field (fields: position, orientation")
+  T.fails(function() b.position = 1 end, "bad field 'position' of body (vec3 expected, got number)")
+  T.fails(function() b.velocity = {1, 2, 3} end,
+    "bad field 'velocity' of body (vec3 expected, got table)")
+  T.fails(function() b.orientation = vec3(1, 0, 0) end,
+    "bad field 'orientation' of body (quat expected, got vec3)")
   T.fails(function() b.orientation = quat(0, 0, 0, 0) end,
-    "body.orientation: the zero quaternion is not a rotation")
+    "bad field 'orientation' of body (the zero quaternion is not a rotation)")
   T.fails(function() return vec3(0 / 0, 0, 0) end,
     "bad argument #1 to 'vec3' (x must be finite, got nan)")  -- no vec3 holds NaN, but one can
   local infinite = body{static = true}.inertia:row(1)     -- hold inf: a static body's tensor row
   T.equal(infinite.x, math.huge, "an infinite vec3")
-  T.fails(function() b.position = infinite end, "body.position must be finite, got (inf, 0, 0)")
-  T.fails(function() b.velocity = infinite end, "body.velocity must be finite, got (inf, 0, 0)")
+  T.fails(function() b.position = infinite end,
+    "bad field 'position' of body (must be finite, got (inf, 0, 0))")
+  T.fails(function() b.velocity = infinite end,
+    "bad field 'velocity' of body (must be finite, got (inf, 0, 0))")
   T.fails(function() b.angular_velocity = infinite end,
-    "body.angular_velocity must be finite, got (inf, 0, 0)")
+    "bad field 'angular_velocity' of body (must be finite, got (inf, 0, 0))")
   T.fails(function() return body{mass = 1, inertia = mat3.identity(), position = infinite} end,
     "bad argument #1 to 'body' (field 'position' must be finite, got (inf, 0, 0))")
   T.fails(function() return body.sphere{mass = 1, radius = 1, angular_velocity = infinite} end,
     "bad argument #1 to 'body.sphere' (field 'angular_velocity' must be finite, got (inf, 0, 0))")
   -- NaN reads "nan" (printf writes the 0/0 of x86 as "-nan").
-  T.fails(function() b.friction = 0 / 0 end, "body.friction must be finite and >= 0, got nan")
-  T.fails(function() b.restitution = 0 / 0 end, "body.restitution must be in [0, 1], got nan")
-  T.fails(function() b.friction = -math.huge end, "body.friction must be finite and >= 0, got -inf")
+  T.fails(function() b.friction = 0 / 0 end,
+    "bad field 'friction' of body (must be finite and >= 0, got nan)")
+  T.fails(function() b.restitution = 0 / 0 end,
+    "bad field 'restitution' of body (must be in [0, 1], got nan)")
+  T.fails(function() b.friction = -math.huge end,
+    "bad field 'friction' of body (must be finite and >= 0, got -inf)")
   local s = body{static = true}
   T.fails(function() s.velocity = vec3(1, 0, 0) end,
-    "body.velocity of a static body must stay zero (it never moves)")
+    "bad field 'velocity' of body (a static body's velocity must stay zero (it never moves))")
   T.fails(function() s.angular_velocity = vec3(0, 1, 0) end,
-    "body.angular_velocity of a static body must stay zero (it never moves)")
+    "bad field 'angular_velocity' of body (a static body's angular_velocity must stay zero (it "
+    .. "never moves))")
   T.equal(b.position, vec3(), "nothing changed")
 end)
 
@@ -233,9 +243,9 @@ T.case("method errors", function()
   T.fails(function() return b.kinetic_energy(vec3()) end,
     "bad argument #1 to 'body:kinetic_energy' (body expected, got vec3)")
   T.fails(function() b:apply_force(vec3(1e308, 0, 0)); b:apply_force(vec3(1e308, 0, 0)) end,
-    "'body:apply_force': the accumulated force or torque would overflow")
+    "bad argument #1 to 'body:apply_force' (the accumulated force or torque would overflow)")
   T.fails(function() b:apply_impulse(vec3(1e308, 0, 0)); b:apply_impulse(vec3(1e308, 0, 0)) end,
-    "'body:apply_impulse': the impulse would make the velocity non-finite")
+    "bad argument #1 to 'body:apply_impulse' (the impulse would make the velocity non-finite)")
 end)
 
 T.case("help knows bodies", function()

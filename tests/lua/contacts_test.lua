@@ -61,9 +61,12 @@ T.case("body materials: defaults, fields, errors", function()
   local c = body.box{mass = 1, size = vec3(1, 1, 1), restitution = 1, friction = 0}
   T.equal(c.restitution, 1, "constructor restitution")
   T.equal(c.friction, 0, "constructor friction")
-  T.fails(function() b.restitution = 1.5 end, "body.restitution must be in [0, 1], got 1.5")
-  T.fails(function() b.friction = -0.1 end, "body.friction must be finite and >= 0, got -0.1")
-  T.fails(function() b.friction = "high" end, "body.friction: number expected, got string")
+  T.fails(function() b.restitution = 1.5 end,
+    "bad field 'restitution' of body (must be in [0, 1], got 1.5)")
+  T.fails(function() b.friction = -0.1 end,
+    "bad field 'friction' of body (must be finite and >= 0, got -0.1)")
+  T.fails(function() b.friction = "high" end,
+    "bad field 'friction' of body (number expected, got string)")
   T.equal(b.friction, 0.2, "unchanged after the errors")
   T.fails(function() return body.sphere{mass = 1, radius = 1, restitution = -1} end,
     "bad argument #1 to 'body.sphere' (field 'restitution' must be in [0, 1], got -1)")

@@ -241,6 +241,13 @@ T.case("every bad argument is refused naming function and argument", function()
       "#2 to 'inertia.mesh' (entry 1 must be a table of 3 vertex indices {i, j, k}"},
     {inertia.mesh, {{vec3(), vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)}, {{1, 3, 2}}, 0},
       "#3 to 'inertia.mesh' (density must be > 0, got 0)"},
+    -- An overflowing result blames the size that made it too large: the largest one.
+    {inertia.solid_box, {1, 1, 1e200, 1},
+      "#3 to 'inertia.solid_box' (the result is not finite (an entry overflows the largest double"},
+    {inertia.solid_ellipsoid, {1, 1, 1, 1e200}, "#4 to 'inertia.solid_ellipsoid' (the result is"},
+    {inertia.parallel_axis, {I, 1, vec3(1e200, 0, 0)}, "#3 to 'inertia.parallel_axis' (the result"},
+    {inertia.points, {{{mass = 1e308, pos = vec3()}, {mass = 1e308, pos = vec3()}}},
+      "#1 to 'inertia.points' (the result is not finite (it overflows the largest double"},
   }
   for i, c in ipairs(cases) do
     T.fails(function() return c[1](table.unpack(c[2], 1, c[2].n or #c[2])) end,

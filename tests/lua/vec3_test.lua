@@ -95,13 +95,19 @@ T.case("errors name the function and the argument", function()
   T.fails(function() return vec3():normalized() end,
     "calling 'vec3:normalized' on bad self (cannot normalize the zero vector)", "normalize 0")
   T.fails(function() return vec3(1e300, 0, 0) * 1e300 end,
-    "'vec3.__mul': result is not finite", "overflow")
-  T.fails(function() return vec3().w end, "vec3 has no field 'w'", "unknown field")
-  T.fails(function() local v = vec3(); v.w = 1 end, "vec3 has no field 'w' to set", "set unknown")
+    "bad argument #2 to 'vec3.__mul' (the result is not finite (a component overflows the "
+    .. "largest double, 1.8e308))", "overflow")
+  T.fails(function() return vec3(1, 2, 3) * (0/0) end,
+    "bad argument #2 to 'vec3.__mul' (factor must be finite, got nan)", "v * nan")
+  T.fails(function() return vec3().w end,
+    "bad field 'w' of vec3 (no such field (fields: x, y, z; methods: see help(\"vec3\")))",
+    "unknown field")
+  T.fails(function() local v = vec3(); v.w = 1 end,
+    "bad field 'w' of vec3 (no such field (fields: x, y, z))", "set unknown")
   T.fails(function() local v = vec3(); v.x = 0/0 end,
-    "bad argument #3 to 'vec3.__newindex' (x must be finite, got nan)", "set NaN")
+    "bad field 'x' of vec3 (must be finite, got nan)", "set NaN")
   T.fails(function() local v = vec3(); v.x = "a" end,
-    "bad argument #3 to 'vec3.__newindex' (number expected, got string)", "set string")
+    "bad field 'x' of vec3 (number expected, got string)", "set string")
   T.fails(function() return vec3.cross(5, vec3()) end,
     "bad argument #1 to 'vec3:cross' (vec3 expected, got number)", "wrong self as function")
   T.fails(function() return vec3(1, 2, 3):cross(mat3.identity()) end,

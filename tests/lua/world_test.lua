@@ -117,12 +117,13 @@ end)
 T.case("gyroscopic and rk4: the field refuses what the constructor refuses", function()
   local w = world{integrator = "rk4"}
   T.fails(function() w.gyroscopic = "explicit" end,
-    "world.gyroscopic is for the Euler integrators: rk4 always integrates the full Euler equations")
+    "bad field 'gyroscopic' of world (it is for the Euler integrators: rk4 always integrates the "
+    .. "full Euler equations)")
   T.equal(w.gyroscopic, "implicit", "unchanged")
   local v = world{gyroscopic = "explicit"}
   T.fails(function() v.integrator = "rk4" end,
-    "world.integrator = 'rk4' ignores world.gyroscopic = 'explicit' (rk4 always integrates the "
-    .. "full Euler equations): set world.gyroscopic = 'implicit' first")
+    "bad field 'integrator' of world ('rk4' ignores world.gyroscopic = 'explicit' (rk4 always "
+    .. "integrates the full Euler equations): set world.gyroscopic = 'implicit' first)")
   T.equal(v.integrator, "semi_implicit", "unchanged")
   v.gyroscopic = "implicit"; v.integrator = "rk4"
   T.equal(v.integrator, "rk4", "allowed once the gyroscopic setting is the default")
@@ -282,17 +283,21 @@ T.case("callbacks may only apply forces", function()
     T.equal(v.time, 0, "unchanged")
   end
   in_step(function(v) v:step(0.1) end,
-    "'world:step': cannot step the world from inside its own step (a force callback)")
+    "calling 'world:step' on bad self (the world is already stepping: a force callback cannot "
+    .. "step its own world)")
   in_step(function(v) v:add(body.sphere{mass = 1, radius = 1}) end,
     "'world:add': cannot add a body during world:step")
   in_step(function(v, c) v:remove(c) end, "'world:remove': cannot remove a body during world:step")
   in_step(function(v) v:add_force(print) end, "'world:add_force': cannot add a force during world:step")
   in_step(function(v, c) v:add_spring{a = c, anchor = vec3(), k = 1} end,
     "'world:add_spring': cannot add a spring during a step (force callbacks may only apply forces)")
-  in_step(function(v) v.gravity = vec3() end, "cannot set world.gravity during world:step")
+  in_step(function(v) v.gravity = vec3() end,
+    "bad field 'gravity' of world (cannot be set during world:step)")
   in_step(function(_, c) c.position = vec3(1, 0, 0) end,
-    "cannot set body.position during world:step (force callbacks may only apply forces)")
-  in_step(function(_, c) c.velocity = vec3(1, 0, 0) end, "cannot set body.velocity during world:step")
+    "bad field 'position' of body (cannot be set during world:step (force callbacks may only "
+    .. "apply forces))")
+  in_step(function(_, c) c.velocity = vec3(1, 0, 0) end,
+    "bad field 'velocity' of body (cannot be set during world:step")
   in_step(function(_, c) c:apply_impulse(vec3(1, 0, 0)) end,
     "'body:apply_impulse': cannot apply an impulse during world:step (force callbacks may only apply forces)")
   T.equal(b.position, vec3(), "untouched")
@@ -323,20 +328,25 @@ T.case("constructor and field errors", function()
     "bad argument #1 to 'world' (field 'gyroscopic' is for the Euler integrators: rk4 always "
     .. "integrates the full Euler equations)")
   local w = world()
-  T.fails(function() w.time = 3 end, "world.time is read-only (it advances with w:step)")
-  T.fails(function() w.gravity = 1 end, "world.gravity: vec3 expected, got number")
+  T.fails(function() w.time = 3 end,
+    "bad field 'time' of world (read-only (it advances with w:step))")
+  T.fails(function() w.gravity = 1 end, "bad field 'gravity' of world (vec3 expected, got number)")
   local infinite = body{static = true}.inertia:row(1)  -- a vec3 can hold inf
-  T.fails(function() w.gravity = infinite end, "world.gravity must be finite, got (inf, 0, 0)")
+  T.fails(function() w.gravity = infinite end,
+    "bad field 'gravity' of world (must be finite, got (inf, 0, 0))")
   T.fails(function() return world{gravity = infinite} end,
     "bad argument #1 to 'world' (field 'gravity' must be finite, got (inf, 0, 0))")
   T.fails(function() w.integrator = "verlet" end,
-    "world.integrator must be one of 'euler', 'semi_implicit', 'rk4', got 'verlet'")
-  T.fails(function() w.substeps = -1 end, "world.substeps must be an integer from 1 to 10000, got -1")
+    "bad field 'integrator' of world (must be one of 'euler', 'semi_implicit', 'rk4', got "
+    .. "'verlet')")
+  T.fails(function() w.substeps = -1 end,
+    "bad field 'substeps' of world (must be an integer from 1 to 10000, got -1)")
   T.fails(function() w.bodies = {} end,
-    "world has no field 'bodies' to set (settable: gravity, integrator, gyroscopic, substeps, "
-    .. "iterations, position_iterations, restitution_threshold, slop, baumgarte, "
-    .. "max_correction, speculative_distance)")
-  T.fails(function() return w.dt end, "world has no field 'dt' (fields: time, gravity")
+    "bad field 'bodies' of world (no such field (settable: gravity, integrator, gyroscopic, "
+    .. "substeps, iterations, position_iterations, restitution_threshold, slop, baumgarte, "
+    .. "max_correction, speculative_distance))")
+  T.fails(function() return w.dt end,
+    "bad field 'dt' of world (no such field (fields: time, gravity")
   T.equal(w.integrator, "semi_implicit", "unchanged")
 end)
 
