@@ -184,6 +184,12 @@ void overflow_error(lua_State* L, int arg, const char* result, const char* part)
   arg_error(L, arg, "%s is not finite (%s overflows the largest double, 1.8e308)", result, part);
 }
 
+void stepping_error(lua_State* L, int arg, const char* what) {
+  arg_error(L, arg,
+            "the world is stepping: cannot %s until world:step returns; force callbacks may only "
+            "apply forces", what);
+}
+
 void function_error(lua_State* L, const char* format, ...) {
   va_list args;
   va_start(args, format);

@@ -77,6 +77,10 @@ const char* push_key_name(lua_State* L, int index);
 // operator, the scalar of a product). `result` is "the result", "the inverse", ...; `part`
 // is "a component", "an entry".
 [[noreturn]] void overflow_error(lua_State* L, int arg, const char* result, const char* part);
+// A call that changes a world while it steps (from a force callback): "calling 'world:add' on
+// bad self (the world is stepping: cannot add a body until world:step returns; force callbacks
+// may only apply forces)", or "bad argument #2 to ..." when the body is not self.
+[[noreturn]] void stepping_error(lua_State* L, int arg, const char* what);
 // luaL_error prefixed with the qualified name of the running function: "'world:step': ...".
 [[noreturn]] void function_error(lua_State* L, const char* format, ...);
 // Raises an error for arguments past the last one a function takes: a silently ignored

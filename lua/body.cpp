@@ -404,7 +404,7 @@ int body_apply_impulse(lua_State* L) {
   const Vec3 j = check_vec3(L, 2);
   const Vec3 point = opt_point(L, 3, handle.body());
   check_no_extra_args(L, 3);
-  check_not_stepping(L, handle, "apply an impulse");
+  check_not_stepping(L, 1, handle, "apply an impulse");
   Body candidate = handle.body();
   apply_impulse(candidate, j, point);
   commit_velocities(L, handle.body(), candidate);
@@ -415,7 +415,7 @@ int body_apply_angular_impulse(lua_State* L) {
   BodyHandle& handle = check_body_handle(L, 1);
   const Vec3 h = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  check_not_stepping(L, handle, "apply an impulse");
+  check_not_stepping(L, 1, handle, "apply an impulse");
   Body candidate = handle.body();
   apply_angular_impulse(candidate, h);
   commit_velocities(L, handle.body(), candidate);
@@ -571,9 +571,8 @@ BodyHandle& push_new_body(lua_State* L, const Body& b) {
   return box->value;
 }
 
-void check_not_stepping(lua_State* L, const BodyHandle& handle, const char* what) {
-  if (handle.store->stepping())
-    function_error(L, "cannot %s during world:step (force callbacks may only apply forces)", what);
+void check_not_stepping(lua_State* L, int arg, const BodyHandle& handle, const char* what) {
+  if (handle.store->stepping()) stepping_error(L, arg, what);
 }
 
 void open_body(lua_State* L, int lib) {

@@ -36,8 +36,8 @@ BodyHandle& push_new_body(lua_State* L, const Body& b);
 // with the defaults of engine/plane.hpp; an argument error names the field.
 void read_material_fields(lua_State* L, int arg, double& restitution, double& friction);
 
-// Raises "cannot <what> during world:step (force callbacks may only apply forces)" when the
-// body's world is stepping: only apply_force and apply_torque make sense at an RK4 stage.
-void check_not_stepping(lua_State* L, const BodyHandle& handle, const char* what);
+// Raises stepping_error blaming argument `arg` (the body) when the body's world is stepping:
+// only apply_force and apply_torque make sense at an RK4 stage.
+void check_not_stepping(lua_State* L, int arg, const BodyHandle& handle, const char* what);
 
 }  // namespace rigidlab::lua

@@ -100,8 +100,8 @@ int collide_resolve(lua_State* L) {
   Body *a, *b;
   check_body_pair(L, a, b);
   // Changing velocities in the middle of an RK4 step would corrupt it.
-  check_not_stepping(L, check_body_handle(L, 1), "apply collision impulses");
-  check_not_stepping(L, check_body_handle(L, 2), "apply collision impulses");
+  check_not_stepping(L, 1, check_body_handle(L, 1), "apply collision impulses");
+  check_not_stepping(L, 2, check_body_handle(L, 2), "apply collision impulses");
   if (lua_type(L, 3) != LUA_TTABLE) type_error(L, 3, "table");
   static const char* const fields[] = {"point", "normal", "restitution", "friction", nullptr};
   check_fields(L, 3, fields);

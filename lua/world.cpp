@@ -165,7 +165,7 @@ int world_add(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   BodyHandle& handle = check_body_handle(L, 2);
   check_no_extra_args(L, 2);
-  if (w.world.stepping()) function_error(L, "cannot add a body during world:step");
+  if (w.world.stepping()) stepping_error(L, 1, "add a body");
   if (handle.store.get() == &w.world.store()) arg_error(L, 2, "the body is already in this world");
   if (handle.store->world() != nullptr)
     arg_error(L, 2, "the body is already in another world (remove it there first)");
@@ -188,7 +188,7 @@ int world_remove(lua_State* L) {
   BodyHandle* handle = nullptr;
   const std::size_t index = check_member(L, w, 2, handle);
   check_no_extra_args(L, 2);
-  if (w.world.stepping()) function_error(L, "cannot remove a body during world:step");
+  if (w.world.stepping()) stepping_error(L, 1, "remove a body");
   auto own = std::make_shared<BodyStore>();
   Body body;
   call_engine(L, [&] { body = w.world.remove(handle->id); });
@@ -248,6 +248,7 @@ double field_nonnegative(lua_State* L, const char* name, double fallback, bool r
 
 int world_add_spring(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
+  if (w.world.stepping()) stepping_error(L, 1, "add a spring");
   if (!lua_istable(L, 2)) type_error(L, 2, "table");
   check_no_extra_args(L, 2);
   static const char* const fields[] = {"a", "a_point", "b", "b_point", "anchor", "k",
@@ -275,6 +276,7 @@ int world_add_spring(lua_State* L) {
 
 int world_add_drag(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
+  if (w.world.stepping()) stepping_error(L, 1, "add drag");
   if (!lua_istable(L, 2)) type_error(L, 2, "table");
   check_no_extra_args(L, 2);
   static const char* const fields[] = {"body", "linear", "angular", nullptr};
@@ -309,7 +311,7 @@ int world_add_plane(lua_State* L) {
   const double offset = field_finite(L, 2, "offset", 0.0, false);
   double restitution = 0.0, friction = 0.0;
   read_material_fields(L, 2, restitution, friction);
-  if (w.world.stepping()) function_error(L, "cannot add a plane during world:step");
+  if (w.world.stepping()) stepping_error(L, 1, "add a plane");
   std::size_t index = 0;
   call_engine(L, [&] {
     index = w.world.add_plane(make_plane(normal, offset, restitution, friction));
@@ -401,7 +403,7 @@ int world_add_force(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   if (lua_type(L, 2) != LUA_TFUNCTION) type_error(L, 2, "function");
   check_no_extra_args(L, 2);
-  if (w.world.stepping()) function_error(L, "cannot add a force during world:step");
+  if (w.world.stepping()) stepping_error(L, 1, "add a force");
   lua_getiuservalue(L, 1, callbacks_slot);
   const lua_Integer index = static_cast<lua_Integer>(luaL_len(L, -1)) + 1;
   lua_pushvalue(L, 2);

@@ -286,11 +286,16 @@ T.case("callbacks may only apply forces", function()
     "calling 'world:step' on bad self (the world is already stepping: a force callback cannot "
     .. "step its own world)")
   in_step(function(v) v:add(body.sphere{mass = 1, radius = 1}) end,
-    "'world:add': cannot add a body during world:step")
-  in_step(function(v, c) v:remove(c) end, "'world:remove': cannot remove a body during world:step")
-  in_step(function(v) v:add_force(print) end, "'world:add_force': cannot add a force during world:step")
+    "calling 'world:add' on bad self (the world is stepping: cannot add a body until world:step "
+    .. "returns; force callbacks may only apply forces)")
+  in_step(function(v, c) v:remove(c) end, "calling 'world:remove' on bad self (the world is stepping: cannot remove a body")
+  in_step(function(v) v:add_force(print) end, "calling 'world:add_force' on bad self (the world is stepping: cannot add a force")
   in_step(function(v, c) v:add_spring{a = c, anchor = vec3(), k = 1} end,
-    "'world:add_spring': cannot add a spring during a step (force callbacks may only apply forces)")
+    "calling 'world:add_spring' on bad self (the world is stepping: cannot add a spring")
+  in_step(function(v, c) v:add_drag{body = c, linear = 1} end,
+    "calling 'world:add_drag' on bad self (the world is stepping: cannot add drag")
+  in_step(function(v) v:add_plane{normal = vec3(0, 0, 1)} end,
+    "calling 'world:add_plane' on bad self (the world is stepping: cannot add a plane")
   in_step(function(v) v.gravity = vec3() end,
     "bad field 'gravity' of world (cannot be set during world:step)")
   in_step(function(_, c) c.position = vec3(1, 0, 0) end,
@@ -299,7 +304,7 @@ T.case("callbacks may only apply forces", function()
   in_step(function(_, c) c.velocity = vec3(1, 0, 0) end,
     "bad field 'velocity' of body (cannot be set during world:step")
   in_step(function(_, c) c:apply_impulse(vec3(1, 0, 0)) end,
-    "'body:apply_impulse': cannot apply an impulse during world:step (force callbacks may only apply forces)")
+    "calling 'body:apply_impulse' on bad self (the world is stepping: cannot apply an impulse")
   T.equal(b.position, vec3(), "untouched")
 end)
 
