@@ -63,7 +63,7 @@ trap 'rm -rf "$trusted_dir"' EXIT
 cat >"$trusted_dir/crash.lua" <<'LESSON'
 return lesson{id = "fixture-crash", title = "Crashes", source = "tests",
   steps = {{title = "Check", text = "One check.", run = function(ctx) ctx:expect("one", 1, 1) end},
-           {title = "Crash", text = "SIGSEGV.", run = function(ctx) os.execute("kill -SEGV $PPID; sleep 5") end}}}
+           {title = "Crash", text = "SIGSEGV.", run = function(ctx) os.execute("exec >/dev/null 2>&1; kill -SEGV $PPID; sleep 5") end}}}
 LESSON
 cat >"$trusted_dir/exits.lua" <<'LESSON'
 return lesson{id = "fixture-exits", title = "Exits", source = "tests",
