@@ -54,8 +54,8 @@ const char* value_type_name(lua_State* L, int index);
 
 // "bad field 'NAME' of TYPE (REASON)": an assignment to, or a read of, a field of a rigidlab
 // object that refuses it (b.mass = 5, v.w, w.gravity = 1). REASON says what is allowed and
-// what came, as an argument error's does: "vec3 expected, got number", "read-only (...)",
-// "no such field (fields: x, y, z)". Prefixed with the script's position, as arg_error.
+// what came, as an argument error's does: "vec3 expected, got number", "read-only: ...",
+// "no such field; the fields are x, y, z". Prefixed with the script's position, as arg_error.
 [[noreturn]] void field_error(lua_State* L, const char* type, const char* name,
                               const char* format, ...);
 // field_error with "<expected> expected, got <type of the value at value_index>".

@@ -258,8 +258,8 @@ int body_index(lua_State* L) {
     lua_pushvalue(L, 2);
     if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
   }
-  field_error(L, "body", push_key_name(L, 2), "no such field (fields: %s; methods: see "
-              "help(\"body\"))", field_list);
+  field_error(L, "body", push_key_name(L, 2), "no such field; the fields are %s, the methods are "
+              "in help(\"body\")", field_list);
 }
 
 // The quat being assigned to b.orientation, normalised.
@@ -297,14 +297,14 @@ int body_newindex(lua_State* L) {
                      is("angular_velocity") || material;
   if (!state) {
     if (push_field(L, handle.body(), key))
-      field_error(L, "body", key, "read-only (mass properties and shape are fixed when the body "
-                  "is made)");
-    field_error(L, "body", push_key_name(L, 2), "no such field (settable: position, orientation, "
-                "velocity, angular_velocity, restitution, friction)");
+      field_error(L, "body", key, "read-only: mass properties and shape are fixed when the body "
+                  "is made");
+    field_error(L, "body", push_key_name(L, 2), "no such field; the settable fields are position, "
+                "orientation, velocity, angular_velocity, restitution, friction");
   }
   if (handle.store->stepping())
-    field_error(L, "body", key, "cannot be set during world:step (force callbacks may only "
-                "apply forces)");
+    field_error(L, "body", key, "the world is stepping: it cannot be set until world:step returns; "
+                "force callbacks may only apply forces");
   if (is("orientation")) {
     const Quat q = new_orientation(L);
     handle.body().orientation = q;
@@ -321,7 +321,7 @@ int body_newindex(lua_State* L) {
     return 0;
   }
   if (is_static(b) && v != Vec3::Zero())
-    field_error(L, "body", key, "a static body's %s must stay zero (it never moves)", key);
+    field_error(L, "body", key, "a static body's %s must stay zero: it never moves", key);
   (is("velocity") ? b.velocity : b.angular_velocity) = v;
   return 0;
 }

@@ -98,13 +98,13 @@ int quat_index(lua_State* L) {
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
   field_error(L, "quat", push_key_name(L, 2),
-              "no such field (fields: w, x, y, z; methods: see help(\"quat\"))");
+              "no such field; the fields are w, x, y, z, the methods are in help(\"quat\")");
 }
 
 int quat_newindex(lua_State* L) {
   Quat& q = check_quat(L, 1);
   const int i = component_index(L, 2);
-  if (i < 0) field_error(L, "quat", push_key_name(L, 2), "no such field (fields: w, x, y, z)");
+  if (i < 0) field_error(L, "quat", push_key_name(L, 2), "no such field; the fields are w, x, y, z");
   component(q, i) = check_field_finite(L, "quat", lua_tostring(L, 2), 3);
   return 0;
 }

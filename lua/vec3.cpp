@@ -52,13 +52,13 @@ int vec3_index(lua_State* L) {
   lua_pushvalue(L, 2);
   if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
   field_error(L, "vec3", push_key_name(L, 2),
-              "no such field (fields: x, y, z; methods: see help(\"vec3\"))");
+              "no such field; the fields are x, y, z, the methods are in help(\"vec3\")");
 }
 
 int vec3_newindex(lua_State* L) {
   Vec3& v = check_vec3(L, 1);
   const int i = component_index(L, 2);
-  if (i < 0) field_error(L, "vec3", push_key_name(L, 2), "no such field (fields: x, y, z)");
+  if (i < 0) field_error(L, "vec3", push_key_name(L, 2), "no such field; the fields are x, y, z");
   v[i] = check_field_finite(L, "vec3", lua_tostring(L, 2), 3);
   return 0;
 }

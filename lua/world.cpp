@@ -525,9 +525,9 @@ int world_index(lua_State* L) {
     lua_pushvalue(L, 2);
     if (lua_type(L, 2) == LUA_TSTRING && lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
     field_error(L, "world", push_key_name(L, 2),
-                "no such field (fields: time, gravity, integrator, gyroscopic, substeps, "
+                "no such field; the fields are time, gravity, integrator, gyroscopic, substeps, "
                 "iterations, position_iterations, restitution_threshold, slop, baumgarte, "
-                "max_correction, speculative_distance; methods: see help(\"world\"))");
+                "max_correction, speculative_distance, the methods are in help(\"world\")");
   }
   return 1;
 }
@@ -536,14 +536,14 @@ int world_newindex(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
   const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
-  if (is("time")) field_error(L, "world", "time", "read-only (it advances with w:step)");
+  if (is("time")) field_error(L, "world", "time", "read-only: it advances with w:step");
   if (!is("gravity") && !is("integrator") && !is("gyroscopic") && !is("substeps") &&
       !is_contact_setting(key))
     field_error(L, "world", push_key_name(L, 2),
-                "no such field (settable: gravity, integrator, gyroscopic, substeps, iterations, "
-                "position_iterations, restitution_threshold, slop, baumgarte, max_correction, "
-                "speculative_distance)");
-  if (w.world.stepping()) field_error(L, "world", key, "cannot be set during world:step");
+                "no such field; the settable fields are gravity, integrator, gyroscopic, substeps, "
+                "iterations, position_iterations, restitution_threshold, slop, baumgarte, "
+                "max_correction, speculative_distance");
+  if (w.world.stepping()) field_error(L, "world", key, "the world is stepping: it cannot be set until world:step returns");
   lua_settop(L, 3);
   if (is("gravity")) {
     w.world.set_gravity(check_field_vec3(L, "world", "gravity", 3));

@@ -181,16 +181,16 @@ end)
 T.case("field errors", function()
   local b = body.sphere{mass = 1, radius = 1}
   T.fails(function() b.mass = 2 end,
-    "bad field 'mass' of body (read-only (mass properties and shape are fixed when the body is "
-    .. "made))")
+    "bad field 'mass' of body (read-only: mass properties and shape are fixed when the body is "
+    .. "made)")
   T.fails(function() b.inertia = mat3.identity() end, "bad field 'inertia' of body (read-only")
   T.fails(function() b.inv_mass = 1 end, "bad field 'inv_mass' of body (read-only")
   T.fails(function() b.radius = 2 end, "bad field 'radius' of body (read-only")
   T.fails(function() b.colour = 1 end,
-    "bad field 'colour' of body (no such field (settable: position, orientation, velocity, "
-    .. "angular_velocity, restitution, friction))")
+    "bad field 'colour' of body (no such field; the settable fields are position, orientation, "
+    .. "velocity, angular_velocity, restitution, friction)")
   T.fails(function() return b.colour end,
-    "bad field 'colour' of body (no such field (fields: position, orientation")
+    "bad field 'colour' of body (no such field; the fields are position, orientation")
   T.fails(function() b.position = 1 end, "bad field 'position' of body (vec3 expected, got number)")
   T.fails(function() b.velocity = {1, 2, 3} end,
     "bad field 'velocity' of body (vec3 expected, got table)")
@@ -221,10 +221,10 @@ T.case("field errors", function()
     "bad field 'friction' of body (must be finite and >= 0, got -inf)")
   local s = body{static = true}
   T.fails(function() s.velocity = vec3(1, 0, 0) end,
-    "bad field 'velocity' of body (a static body's velocity must stay zero (it never moves))")
+    "bad field 'velocity' of body (a static body's velocity must stay zero: it never moves)")
   T.fails(function() s.angular_velocity = vec3(0, 1, 0) end,
-    "bad field 'angular_velocity' of body (a static body's angular_velocity must stay zero (it "
-    .. "never moves))")
+    "bad field 'angular_velocity' of body (a static body's angular_velocity must stay zero: it "
+    .. "never moves)")
   T.equal(b.position, vec3(), "nothing changed")
 end)
 

@@ -100,10 +100,10 @@ T.case("errors name the function and the argument", function()
   T.fails(function() return vec3(1, 2, 3) * (0/0) end,
     "bad argument #2 to 'vec3.__mul' (factor must be finite, got nan)", "v * nan")
   T.fails(function() return vec3().w end,
-    "bad field 'w' of vec3 (no such field (fields: x, y, z; methods: see help(\"vec3\")))",
+    "bad field 'w' of vec3 (no such field; the fields are x, y, z, the methods are in help(\"vec3\"))",
     "unknown field")
   T.fails(function() local v = vec3(); v.w = 1 end,
-    "bad field 'w' of vec3 (no such field (fields: x, y, z))", "set unknown")
+    "bad field 'w' of vec3 (no such field; the fields are x, y, z)", "set unknown")
   T.fails(function() local v = vec3(); v.x = 0/0 end,
     "bad field 'x' of vec3 (must be finite, got nan)", "set NaN")
   T.fails(function() local v = vec3(); v.x = "a" end,

@@ -297,12 +297,13 @@ T.case("callbacks may only apply forces", function()
   in_step(function(v) v:add_plane{normal = vec3(0, 0, 1)} end,
     "calling 'world:add_plane' on bad self (the world is stepping: cannot add a plane")
   in_step(function(v) v.gravity = vec3() end,
-    "bad field 'gravity' of world (cannot be set during world:step)")
+    "bad field 'gravity' of world (the world is stepping: it cannot be set until world:step "
+    .. "returns)")
   in_step(function(_, c) c.position = vec3(1, 0, 0) end,
-    "bad field 'position' of body (cannot be set during world:step (force callbacks may only "
-    .. "apply forces))")
+    "bad field 'position' of body (the world is stepping: it cannot be set until world:step "
+    .. "returns; force callbacks may only apply forces)")
   in_step(function(_, c) c.velocity = vec3(1, 0, 0) end,
-    "bad field 'velocity' of body (cannot be set during world:step")
+    "bad field 'velocity' of body (the world is stepping")
   in_step(function(_, c) c:apply_impulse(vec3(1, 0, 0)) end,
     "calling 'body:apply_impulse' on bad self (the world is stepping: cannot apply an impulse")
   T.equal(b.position, vec3(), "untouched")
@@ -334,7 +335,7 @@ T.case("constructor and field errors", function()
     .. "integrates the full Euler equations)")
   local w = world()
   T.fails(function() w.time = 3 end,
-    "bad field 'time' of world (read-only (it advances with w:step))")
+    "bad field 'time' of world (read-only: it advances with w:step)")
   T.fails(function() w.gravity = 1 end, "bad field 'gravity' of world (vec3 expected, got number)")
   local infinite = body{static = true}.inertia:row(1)  -- a vec3 can hold inf
   T.fails(function() w.gravity = infinite end,
@@ -347,11 +348,11 @@ T.case("constructor and field errors", function()
   T.fails(function() w.substeps = -1 end,
     "bad field 'substeps' of world (must be an integer from 1 to 10000, got -1)")
   T.fails(function() w.bodies = {} end,
-    "bad field 'bodies' of world (no such field (settable: gravity, integrator, gyroscopic, "
-    .. "substeps, iterations, position_iterations, restitution_threshold, slop, baumgarte, "
-    .. "max_correction, speculative_distance))")
+    "bad field 'bodies' of world (no such field; the settable fields are gravity, integrator, "
+    .. "gyroscopic, substeps, iterations, position_iterations, restitution_threshold, slop, "
+    .. "baumgarte, max_correction, speculative_distance)")
   T.fails(function() return w.dt end,
-    "bad field 'dt' of world (no such field (fields: time, gravity")
+    "bad field 'dt' of world (no such field; the fields are time, gravity")
   T.equal(w.integrator, "semi_implicit", "unchanged")
 end)
 
