@@ -72,13 +72,13 @@ expect_stderr_line 1 "rigidlab: $scratch/step.lua:7: stopped: the time limit (1 
 # The world is as before the stopped step: the script can catch the error and look, as long
 # as what it does afterwards fits in the grace second (the deadline stays passed).
 cat >"$scratch/consistent.lua" <<'EOF'
-local w = world{iterations = 1000}
+local w = world{}
 w:add_plane{normal = vec3(0, 1, 0), offset = 0}
 for i = 0, 99 do w:add(body.box{mass = 1, size = vec3(1, 1, 1), position = vec3(i % 10 * 1.01, 0.5 + i // 10, 0)}) end
 w:step(0.01)
 local b = w:bodies()[55]
 local t0, p0 = w.time, b.position
-w.substeps = 10000
+w.substeps, w.iterations = 10000, 1000  -- a step of hours; the one above is quick (ASan too)
 local ok, message = pcall(w.step, w, 0.01)
 print(ok, message)
 print(w.time == t0, b.position == p0)
