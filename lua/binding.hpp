@@ -164,6 +164,21 @@ inline Mat3& push_mat3(lua_State* L, const Mat3& m) {
 inline Quat& push_quat(lua_State* L, const Quat& q) {
   return push_tagged(L, q, quat_tag, &quat_metatable_key);
 }
+// Pushes a result that must be finite (a vec3, mat3 or quat never holds NaN or Inf); an
+// overflow is blamed on argument `arg`: the operand that made it too large, the point of
+// b:to_world(p), self for a total such as w:linear_momentum().
+inline Vec3& push_finite(lua_State* L, const Vec3& v, int arg) {
+  check_result(L, v, arg);
+  return push_vec3(L, v);
+}
+inline Mat3& push_finite(lua_State* L, const Mat3& m, int arg) {
+  check_result(L, m, arg);
+  return push_mat3(L, m);
+}
+inline Quat& push_finite(lua_State* L, const Quat& q, int arg) {
+  check_result(L, q, arg);
+  return push_quat(L, q);
+}
 
 // Creates a protected metatable for a userdata type and stores it in the registry under
 // `key`: `__name` is `type_name`, `__metatable` hides it from getmetatable/setmetatable.

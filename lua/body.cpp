@@ -31,13 +31,6 @@ const char* shape_name(ShapeKind kind) {
   return "none";
 }
 
-// A vec3 result that must be finite (huge inputs can overflow); an overflow is blamed on
-// argument `arg` (the point of b:to_world(p), the body itself for b:linear_momentum()).
-void push_finite_result(lua_State* L, const Vec3& v, int arg) {
-  check_result(L, v, arg);
-  push_vec3(L, v);
-}
-
 // ---- constructors ----------------------------------------------------------------------------
 
 // The name of the type of the value on top of the stack (value_type_name).
@@ -428,7 +421,7 @@ int point_method(lua_State* L) {
   const Body& b = check_body(L, 1);
   const Vec3& p = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  push_finite_result(L, compute(b, p), 2);
+  push_finite(L, compute(b, p), 2);
   return 1;
 }
 
@@ -436,7 +429,7 @@ template <Vec3 (*compute)(const Body&)>
 int vec3_method(lua_State* L) {
   const Body& b = check_body(L, 1);
   check_no_extra_args(L, 1);
-  push_finite_result(L, compute(b), 1);
+  push_finite(L, compute(b), 1);
   return 1;
 }
 

@@ -11,13 +11,6 @@
 namespace rigidlab::lua {
 namespace {
 
-// Pushes a result that must be finite; an overflow is blamed on argument `arg` (the operand
-// that made it too large), so the error names the function and the argument.
-Mat3& push_finite_mat3(lua_State* L, const Mat3& m, int arg) {
-  check_result(L, m, arg);
-  return push_mat3(L, m);
-}
-
 // One row of mat3{{..},{..},{..}}: a table of three finite numbers. Raw access: a table's
 // metamethods (__len, __index) are not run, so they cannot raise errors of their own here.
 void read_row(lua_State* L, int row, Mat3& m) {
@@ -239,14 +232,14 @@ void check_two_mat3(lua_State* L, const Mat3*& a, const Mat3*& b) {
 int mat3_add(lua_State* L) {
   const Mat3 *a, *b;
   check_two_mat3(L, a, b);
-  push_finite_mat3(L, *a + *b, 2);
+  push_finite(L, Mat3(*a + *b), 2);
   return 1;
 }
 
 int mat3_sub(lua_State* L) {
   const Mat3 *a, *b;
   check_two_mat3(L, a, b);
-  push_finite_mat3(L, *a - *b, 2);
+  push_finite(L, Mat3(*a - *b), 2);
   return 1;
 }
 
@@ -263,15 +256,13 @@ int mat3_mul(lua_State* L) {
       arg_error(L, 1, "vec3 * mat3 is not defined (vectors are columns): use M * v or "
                       "M:transpose() * v");
     if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "number");
-    push_finite_mat3(L, lua_tonumber(L, 1) * check_mat3(L, 2), 1);
+    push_finite(L, Mat3(lua_tonumber(L, 1) * check_mat3(L, 2)), 1);
   } else if (const Vec3* v = test_vec3(L, 2)) {
-    const Vec3 result = *a * *v;
-    check_result(L, result, 2);
-    push_vec3(L, result);
+    push_finite(L, Vec3(*a * *v), 2);
   } else if (const Mat3* b = test_mat3(L, 2)) {
-    push_finite_mat3(L, *a * *b, 2);
+    push_finite(L, Mat3(*a * *b), 2);
   } else if (lua_type(L, 2) == LUA_TNUMBER) {
-    push_finite_mat3(L, *a * lua_tonumber(L, 2), 2);
+    push_finite(L, Mat3(*a * lua_tonumber(L, 2)), 2);
   } else {
     type_error(L, 2, "vec3, mat3 or number");
   }
@@ -282,7 +273,7 @@ int mat3_div(lua_State* L) {
   const Mat3& m = check_mat3(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a mat3 by zero");
-  push_finite_mat3(L, m / s, 2);
+  push_finite(L, Mat3(m / s), 2);
   return 1;
 }
 

@@ -10,13 +10,6 @@
 namespace rigidlab::lua {
 namespace {
 
-// Pushes a result that must be finite; an overflow is blamed on argument `arg` (the operand
-// that made it too large), so the error names the function and the argument.
-Quat& push_finite_quat(lua_State* L, const Quat& q, int arg) {
-  check_result(L, q, arg);
-  return push_quat(L, q);
-}
-
 // The quaternion at `arg` as a unit rotation; error for the zero quaternion.
 Quat check_rotation(lua_State* L, int arg) {
   const Quat& q = check_quat(L, arg);
@@ -119,14 +112,14 @@ void check_two_quat(lua_State* L, const Quat*& a, const Quat*& b) {
 int quat_add(lua_State* L) {
   const Quat *a, *b;
   check_two_quat(L, a, b);
-  push_finite_quat(L, Quat(a->coeffs() + b->coeffs()), 2);
+  push_finite(L, Quat(a->coeffs() + b->coeffs()), 2);
   return 1;
 }
 
 int quat_sub(lua_State* L) {
   const Quat *a, *b;
   check_two_quat(L, a, b);
-  push_finite_quat(L, Quat(a->coeffs() - b->coeffs()), 2);
+  push_finite(L, Quat(a->coeffs() - b->coeffs()), 2);
   return 1;
 }
 
@@ -140,17 +133,17 @@ int quat_mul(lua_State* L) {
   const Quat* a = test_quat(L, 1);
   const Quat* b = test_quat(L, 2);
   if (a != nullptr && b != nullptr) {
-    push_finite_quat(L, *a * *b, 2);
+    push_finite(L, *a * *b, 2);
   } else if (a != nullptr) {
     if (test_vec3(L, 2) != nullptr)
       arg_error(L, 2, "quat * vec3 is not defined: use q:rotate(v)");
     if (lua_type(L, 2) != LUA_TNUMBER) type_error(L, 2, "quat or number");
     const double s = check_finite(L, 2, "factor");
-    push_finite_quat(L, Quat(a->coeffs() * s), 2);
+    push_finite(L, Quat(a->coeffs() * s), 2);
   } else {
     if (lua_type(L, 1) != LUA_TNUMBER) type_error(L, 1, "quat or number");
     const double s = check_finite(L, 1, "factor");
-    push_finite_quat(L, Quat(check_quat(L, 2).coeffs() * s), 1);
+    push_finite(L, Quat(check_quat(L, 2).coeffs() * s), 1);
   }
   return 1;
 }
@@ -159,7 +152,7 @@ int quat_div(lua_State* L) {
   const Quat& q = check_quat(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a quat by zero");
-  push_finite_quat(L, Quat(q.coeffs() / s), 2);
+  push_finite(L, Quat(q.coeffs() / s), 2);
   return 1;
 }
 
@@ -204,7 +197,7 @@ int quat_inverse(lua_State* L) {
   const Quat& q = check_quat(L, 1);
   check_no_extra_args(L, 1);
   if (!(q.squaredNorm() > 0.0)) arg_error(L, 1, "the zero quaternion has no inverse");
-  push_finite_quat(L, Quat(q.conjugate().coeffs() / q.squaredNorm()), 1);
+  push_finite(L, Quat(q.conjugate().coeffs() / q.squaredNorm()), 1);
   return 1;
 }
 

@@ -9,14 +9,6 @@
 namespace rigidlab::lua {
 namespace {
 
-// Pushes a result that must be finite (a vec3 never holds NaN or Inf); an overflow is blamed
-// on argument `arg` (the operand that made it too large), so the error names the function and
-// the argument.
-Vec3& push_finite_vec3(lua_State* L, const Vec3& v, int arg) {
-  check_result(L, v, arg);
-  return push_vec3(L, v);
-}
-
 // vec3(x, y, z): missing components are 0.
 int vec3_call(lua_State* L) {
   lua_remove(L, 1);  // the vec3 table itself
@@ -74,14 +66,14 @@ void check_two_vec3(lua_State* L, const Vec3*& a, const Vec3*& b) {
 int vec3_add(lua_State* L) {
   const Vec3 *a, *b;
   check_two_vec3(L, a, b);
-  push_finite_vec3(L, *a + *b, 2);
+  push_finite(L, Vec3(*a + *b), 2);
   return 1;
 }
 
 int vec3_sub(lua_State* L) {
   const Vec3 *a, *b;
   check_two_vec3(L, a, b);
-  push_finite_vec3(L, *a - *b, 2);
+  push_finite(L, Vec3(*a - *b), 2);
   return 1;
 }
 
@@ -104,7 +96,7 @@ int vec3_mul(lua_State* L) {
   if (lua_type(L, scalar_arg) != LUA_TNUMBER)
     type_error(L, scalar_arg, vector_arg == 1 ? "number (vec3 * number)" : "number");
   const double s = check_finite(L, scalar_arg, "factor");
-  push_finite_vec3(L, check_vec3(L, vector_arg) * s, scalar_arg);
+  push_finite(L, Vec3(check_vec3(L, vector_arg) * s), scalar_arg);
   return 1;
 }
 
@@ -112,7 +104,7 @@ int vec3_div(lua_State* L) {
   const Vec3& v = check_vec3(L, 1);
   const double s = check_finite(L, 2, "divisor");
   if (s == 0.0) arg_error(L, 2, "division of a vec3 by zero");
-  push_finite_vec3(L, v / s, 2);
+  push_finite(L, Vec3(v / s), 2);
   return 1;
 }
 
@@ -150,7 +142,7 @@ int vec3_cross(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   const Vec3& b = check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  push_finite_vec3(L, a.cross(b), 2);
+  push_finite(L, Vec3(a.cross(b)), 2);
   return 1;
 }
 
@@ -165,7 +157,7 @@ int vec3_normalized(lua_State* L) {
   const Vec3& a = check_vec3(L, 1);
   check_no_extra_args(L, 1);
   if (is_zero(a)) arg_error(L, 1, "cannot normalize the zero vector");
-  push_finite_vec3(L, unit(a), 1);
+  push_finite(L, unit(a), 1);
   return 1;
 }
 

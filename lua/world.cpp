@@ -487,16 +487,10 @@ int world_energy(lua_State* L) {
   return 1;
 }
 
-// A total that must be finite; an overflow is blamed on the world (self).
-void push_finite_total(lua_State* L, const Vec3& v) {
-  check_result(L, v, 1);
-  push_vec3(L, v);
-}
-
 int world_linear_momentum(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   check_no_extra_args(L, 1);
-  push_finite_total(L, w.world.linear_momentum());
+  push_finite(L, w.world.linear_momentum(), 1);
   return 1;
 }
 
@@ -504,7 +498,7 @@ int world_angular_momentum(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   const Vec3 about = lua_isnoneornil(L, 2) ? Vec3::Zero() : check_vec3(L, 2);
   check_no_extra_args(L, 2);
-  push_finite_total(L, w.world.angular_momentum(about));
+  push_finite(L, w.world.angular_momentum(about), 1);
   return 1;
 }
 
