@@ -5,20 +5,11 @@
 #include <fstream>
 
 #include "cli/interrupt.hpp"
+#include "lua/rigidlab.hpp"
 #include "lua/text_only.hpp"
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
-
-namespace {
-
-int traceback(lua_State* L) {
-  const char* message = lua_tostring(L, 1);
-  luaL_traceback(L, L, message != nullptr ? message : "(error object is not a string)", 1);
-  return 1;
-}
-
-}  // namespace
 
 fs::path lesson_directory() {
   if (const char* dir = std::getenv("RIGIDLAB_LESSONS"); dir != nullptr && *dir != '\0')
@@ -66,7 +57,7 @@ bool trusted(const fs::path& path) {
 }
 
 bool load_lesson(lua_State* L, const fs::path& path, std::string& error) {
-  lua_pushcfunction(L, traceback);
+  lua_pushcfunction(L, lua::traceback_handler);
   const int handler = lua_gettop(L);
   int status = luaL_loadfilex(L, path.c_str(), "t");
   if (status == LUA_OK) {
@@ -98,7 +89,7 @@ bool run_step(lua_State* L, int lesson, int ctx, int number, std::string& error)
     lua_settop(L, step - 1);
     return true;
   }
-  lua_pushcfunction(L, traceback);
+  lua_pushcfunction(L, lua::traceback_handler);
   lua_insert(L, -2);
   lua_pushvalue(L, ctx);
   int status;

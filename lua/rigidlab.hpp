@@ -12,4 +12,9 @@ int open_library(lua_State* L);
 // the table, and every name in it is also a global.
 void open_all(lua_State* L);
 
+// A message handler for lua_pcall, as lua.c's msghandler: the message with the stack
+// traceback appended; an error object that is not a string becomes its __tostring, else
+// "(error object is a table value)".
+int traceback_handler(lua_State* L);
+
 }  // namespace rigidlab::lua

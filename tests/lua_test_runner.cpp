@@ -4,14 +4,6 @@
 
 #include "lua/rigidlab.hpp"
 
-namespace {
-int traceback(lua_State* L) {
-  const char* message = lua_tostring(L, 1);
-  luaL_traceback(L, L, message != nullptr ? message : "(error object is not a string)", 1);
-  return 1;
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::fprintf(stderr, "usage: lua_test_runner SCRIPT.lua\n");
@@ -23,7 +15,7 @@ int main(int argc, char** argv) {
   lua_pushstring(L, argv[1]);
   lua_rawseti(L, -2, 0);
   lua_setglobal(L, "arg");
-  lua_pushcfunction(L, traceback);
+  lua_pushcfunction(L, rigidlab::lua::traceback_handler);
   int status = luaL_loadfilex(L, argv[1], "t");
   if (status == LUA_OK) status = lua_pcall(L, 0, 0, -2);
   if (status != LUA_OK) std::fprintf(stderr, "%s\n", lua_tostring(L, -1));

@@ -26,6 +26,10 @@ expect "passing lesson" 0 "1 passed, 0 failed" -- "$rigidlab" check "$here/good.
 expect "wrong value" 1 "0 passed, 1 failed" -- "$rigidlab" check "$here/wrong.lua"
 expect "wrong value shows got and want" 1 "two and two: got 4, want 5" -- \
   "$rigidlab" check "$here/wrong.lua"
+expect "an error object that is not a string is described" 1 \
+  "error: step 1: (error object is a table value)" -- "$rigidlab" check "$here/error_objects.lua"
+expect "an error object's __tostring is used" 1 "error: a described failure" -- \
+  "$rigidlab" lesson "$here/error_objects.lua"
 start=$(date +%s)
 expect "infinite loop is stopped" 1 "stopped: the instruction limit" -- \
   "$rigidlab" check "$here/infinite_loop.lua"
