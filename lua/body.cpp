@@ -33,16 +33,13 @@ const char* shape_name(ShapeKind kind) {
 
 // ---- constructors ----------------------------------------------------------------------------
 
-// The name of the type of the value on top of the stack (value_type_name).
-const char* top_type_name(lua_State* L) { return value_type_name(L, -1); }
-
 // mass and static of a constructor table. Returns true for a static body; `mass` is set for a
 // dynamic one. `mass = math.huge` and `static = true` both make a static body.
 bool read_mass(lua_State* L, double& mass) {
   bool is_static = false, static_given = false;
   if (get_field(L, 1, "static") != LUA_TNIL) {
     if (!lua_isboolean(L, -1))
-      arg_error(L, 1, "field 'static' must be a boolean, got %s", top_type_name(L));
+      arg_error(L, 1, "field 'static' must be a boolean, got %s", value_type_name(L, -1));
     is_static = lua_toboolean(L, -1);
     static_given = true;
   }
@@ -54,7 +51,7 @@ bool read_mass(lua_State* L, double& mass) {
     return true;
   }
   if (type != LUA_TNUMBER)
-    arg_error(L, 1, "field 'mass' must be a number, got %s", top_type_name(L));
+    arg_error(L, 1, "field 'mass' must be a number, got %s", value_type_name(L, -1));
   mass = lua_tonumber(L, -1);
   lua_pop(L, 1);
   if (mass == std::numeric_limits<double>::infinity()) {
@@ -78,7 +75,7 @@ Quat field_orientation(lua_State* L) {
     return Quat::Identity();
   }
   const Quat* q = test_quat(L, -1);
-  if (q == nullptr) arg_error(L, 1, "field 'orientation' must be a quat, got %s", top_type_name(L));
+  if (q == nullptr) arg_error(L, 1, "field 'orientation' must be a quat, got %s", value_type_name(L, -1));
   if (!is_finite(*q)) arg_error(L, 1, "field 'orientation' must be finite");
   if (is_zero(*q))
     arg_error(L, 1, "field 'orientation' is the zero quaternion, which is not a rotation");
@@ -130,7 +127,7 @@ int body_call(lua_State* L) {
     if (get_field(L, 1, "inertia") == LUA_TNIL) arg_error(L, 1, "field 'inertia' is required");
     const Mat3* inertia = test_mat3(L, -1);
     if (inertia == nullptr)
-      arg_error(L, 1, "field 'inertia' must be a mat3, got %s", top_type_name(L));
+      arg_error(L, 1, "field 'inertia' must be a mat3, got %s", value_type_name(L, -1));
     const Mat3 tensor = *inertia;
     lua_pop(L, 1);
     const std::string problem = inertia_tensor_problem(tensor);

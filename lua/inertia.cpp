@@ -30,14 +30,8 @@ auto engine_call(lua_State* L, F&& f) -> decltype(f()) {
 
 // Results are pushed only when finite: huge inputs can overflow. The overflow is blamed on
 // argument `arg`, the one that made the result too large (a shape's size: see largest_arg).
-void push_result(lua_State* L, const Mat3& m, int arg) {
-  check_result(L, m, arg);
-  push_mat3(L, m);
-}
-void push_result(lua_State* L, const Vec3& v, int arg) {
-  check_result(L, v, arg);
-  push_vec3(L, v);
-}
+void push_result(lua_State* L, const Mat3& m, int arg) { push_finite(L, m, arg); }
+void push_result(lua_State* L, const Vec3& v, int arg) { push_finite(L, v, arg); }
 void push_result(lua_State* L, double x, int arg) {
   if (!std::isfinite(x)) overflow_error(L, arg, "the result", "it");
   lua_pushnumber(L, x);
