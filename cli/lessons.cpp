@@ -83,7 +83,8 @@ void print_lesson_heading(lua_State* L, int lesson, int width) {
   for (size_t start = 0; start <= source.size();) {
     size_t end = source.find("; ", start);
     if (end == std::string::npos) end = source.size();
-    std::fputs(lua::fit_words_after(label, source.substr(start, end - start), width).c_str(), stdout);
+    const std::string document = source.substr(start, end - start);
+    std::fputs(lua::fit_words_after(label, document, width).c_str(), stdout);
     label = "          ";
     start = end + 2;
   }

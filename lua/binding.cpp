@@ -99,25 +99,28 @@ void type_error(lua_State* L, int arg, const char* expected) {
 }
 
 namespace {
+// rigidlab's userdata types: the tag that starts each value, and its name.
+struct TaggedType {
+  std::uint64_t tag;
+  const char* name;
+};
+constexpr TaggedType tagged_types[] = {
+    {vec3_tag, "vec3"}, {mat3_tag, "mat3"}, {quat_tag, "quat"},
+    {body_tag, "body"}, {world_tag, "world"}};
+
 // The rigidlab type whose tag starts the userdata at `index`, or nullptr.
 const char* tagged_type_name(lua_State* L, int index) {
   if (lua_rawlen(L, index) < sizeof(std::uint64_t)) return nullptr;
   std::uint64_t tag = 0;
   std::memcpy(&tag, lua_touserdata(L, index), sizeof tag);
-  switch (tag) {
-    case vec3_tag: return "vec3";
-    case mat3_tag: return "mat3";
-    case quat_tag: return "quat";
-    case body_tag: return "body";
-    case world_tag: return "world";
-    default: return nullptr;
-  }
+  for (const TaggedType& type : tagged_types)
+    if (type.tag == tag) return type.name;
+  return nullptr;
 }
 
 bool is_rigidlab_type_name(const char* name) {
-  static const char* const own[] = {"vec3", "mat3", "quat", "body", "world"};
-  for (const char* o : own)
-    if (std::strcmp(name, o) == 0) return true;
+  for (const TaggedType& type : tagged_types)
+    if (std::strcmp(name, type.name) == 0) return true;
   return false;
 }
 }  // namespace
@@ -227,10 +230,6 @@ double check_nonnegative(lua_State* L, int arg, const char* what) {
   const double x = check_finite(L, arg, what);
   if (!(x >= 0.0)) arg_error(L, arg, "%s must be >= 0, got %s", what, format_number(x).c_str());
   return x;
-}
-
-double opt_finite(lua_State* L, int arg, const char* what, double fallback) {
-  return lua_isnoneornil(L, arg) ? fallback : check_finite(L, arg, what);
 }
 
 bool to_integer(lua_State* L, int index, lua_Integer& out) {

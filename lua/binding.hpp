@@ -91,7 +91,6 @@ void check_no_extra_args(lua_State* L, int max_args);
 double check_finite(lua_State* L, int arg, const char* what);
 double check_positive(lua_State* L, int arg, const char* what);      // finite and > 0
 double check_nonnegative(lua_State* L, int arg, const char* what);   // finite and >= 0
-double opt_finite(lua_State* L, int arg, const char* what, double fallback);
 // The value at `index` as an integer when it is a number with an integral value: 2 and 2.0,
 // as luaL_checkinteger accepts (not 2.5, not the string "2"). False otherwise.
 bool to_integer(lua_State* L, int index, lua_Integer& out);

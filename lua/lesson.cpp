@@ -147,7 +147,8 @@ int context_show(lua_State* L) {
     const std::string rows = format_value(L, 3, "    ");  // "\n    (..)" three times
     for (size_t start = rows.find("\n    ("); start != std::string::npos;) {
       const size_t end = rows.find("\n", start + 1);
-      const std::string row = rows.substr(start + 5, end == std::string::npos ? end : end - start - 5);
+      const size_t length = end == std::string::npos ? end : end - start - 5;
+      const std::string row = rows.substr(start + 5, length);  // past "\n    "
       text += "\n" + fit_value("    ", row, tally.width);
       start = end;
     }

@@ -260,7 +260,8 @@ int world_add_spring(lua_State* L) {
   const bool has_anchor = get_field(L, 2, "anchor") != LUA_TNIL;
   const bool has_b_point = get_field(L, 2, "b_point") != LUA_TNIL;
   lua_pop(L, 2);
-  if (s.b == no_body && !has_anchor) arg_error(L, 2, "field 'b' (a body) or 'anchor' (a world point) is required");
+  if (s.b == no_body && !has_anchor)
+    arg_error(L, 2, "field 'b' (a body) or 'anchor' (a world point) is required");
   if (s.b != no_body && has_anchor) arg_error(L, 2, "fields 'b' and 'anchor' exclude each other");
   if (s.b == no_body && has_b_point) arg_error(L, 2, "field 'b_point' needs field 'b'");
   if (s.a == s.b) arg_error(L, 2, "fields 'a' and 'b' must be different bodies");
@@ -537,7 +538,8 @@ int world_newindex(lua_State* L) {
                 "no such field; the settable fields are gravity, integrator, gyroscopic, substeps, "
                 "iterations, position_iterations, restitution_threshold, slop, baumgarte, "
                 "max_correction, speculative_distance");
-  if (w.world.stepping()) field_error(L, "world", key, "the world is stepping: it cannot be set until world:step returns");
+  if (w.world.stepping())
+    field_error(L, "world", key, "the world is stepping: it cannot be set until world:step returns");
   lua_settop(L, 3);
   if (is("gravity")) {
     w.world.set_gravity(check_field_vec3(L, "world", "gravity", 3));
