@@ -1,5 +1,6 @@
--- plot.lines draws what it is given (dimensions, labels, ranges, SVG) and csv.write writes
--- what reads back exactly.
+-- plot.lines draws what it is given (dimensions, labels, round-number ticks, series told apart
+-- without colour, well-formed SVG) and csv.write writes what reads back exactly (numbers and
+-- vec3 columns, in the order asked or sorted), refusing names it cannot write.
 local T = dofile("testing.lua")
 
 local function captured(fn)
@@ -55,6 +56,69 @@ T.case("svg output", function()
   assert(svg:find("^<svg") and svg:find("</svg>\n$"), "a whole document")
 end)
 
+T.case("without colour (in a pipe) each series has its own glyph, in the chart and legend", function()
+  local out = captured(function()
+    plot.lines{{y = {1, 3, 2, 5, 4, 6}, label = "first"}, {y = {6, 4, 5, 2, 3, 1}, label = "second"}}
+  end)
+  assert(not out:find("\27", 1, true), "no colour in a pipe")
+  local legend = out:match("[^\n]*$")
+  assert(legend:find("*", 1, true) and legend:find("+", 1, true), "glyphs in the legend: " .. legend)
+  local body = out:sub(1, #out - #legend)
+  assert(body:find("*", 1, true) and body:find("+", 1, true), "glyphs on the lines: " .. body)
+end)
+
+T.case("svg: ticks at round numbers, labels made well-formed XML", function()
+  captured(function()
+    plot.lines{{x = {0, 10}, y = {0.13, 2.87}, label = "a\0b\27[31m\xff"}, title = "<&>\1",
+      svg = tmp}
+  end)
+  local svg = io.open(tmp):read("a")
+  for _, tick in ipairs({"0", "1", "2", "3", "4", "6", "8", "10"}) do
+    assert(svg:find(">" .. tick .. "</text>", 1, true), "tick " .. tick)
+  end
+  assert(not svg:find("[%z\1-\8\11\12\14-\31]"), "no control characters")
+  assert(svg:find("&lt;&amp;&gt;", 1, true), "markup escaped")
+  assert(utf8.len(svg), "valid UTF-8")
+end)
+
+T.case("names with a NUL byte are refused, not cut", function()
+  T.fails(function() plot.lines{{y = {1, 2}}, svg = tmp .. "\0.svg"} end,
+    "bad argument #1 to 'plot.lines' (field 'svg' may not contain a NUL byte", "svg")
+  T.fails(function() csv.write(tmp .. "\0junk", {x = {1}}) end,
+    "bad argument #1 to 'csv.write' (path may not contain a NUL byte", "csv path")
+  T.fails(function() csv.write(tmp, {["a\0b"] = {1}}) end,
+    "bad argument #2 to 'csv.write' (column name 'a", "csv column")
+end)
+
+T.case("a full disk is an error in the usual form", function()
+  T.fails(function() csv.write("/dev/full", {x = {1, 2}}) end,
+    "bad argument #1 to 'csv.write' (cannot write '/dev/full': No space left on device)", "csv")
+  T.fails(function() captured(function() plot.lines{{y = {1, 2}}, svg = "/dev/full"} end) end,
+    "bad argument #1 to 'plot.lines' (field 'svg': cannot write '/dev/full': No space left on device)",
+    "svg")
+end)
+
+T.case("csv: vec3 columns, default order sorted, every column written", function()
+  csv.write(tmp, {t = {0, 0.5}, p = {vec3(1, 2, 3), vec3(-4, 5.5, 1e-9)}})
+  local lines = {}
+  for line in io.lines(tmp) do lines[#lines + 1] = line end
+  T.equal(lines[1], "p.x,p.y,p.z,t", "sorted, vec3 split")
+  T.equal(lines[2], "1,2,3,0", "row 1")
+  T.equal(lines[3], "-4,5.5,1e-09,0.5", "row 2")
+  csv.write(tmp, {t = {0}, p = {vec3(1, 2, 3)}}, {"t", "p"})
+  T.equal(io.lines(tmp)(), "t,p.x,p.y,p.z", "order given")
+  T.fails(function() csv.write(tmp, {t = {0}, p = {1}}, {"t"}) end,
+    "bad argument #3 to 'csv.write' (column 'p' is not in order", "left out of order")
+  T.fails(function() csv.write(tmp, {t = {0}}, {"t", "t"}) end,
+    "bad argument #3 to 'csv.write' (order lists 't' twice)", "twice")
+  T.fails(function() csv.write(tmp, {p = {vec3(1, 2, 3), 5}}) end,
+    "column 'p' entry 2 must be a vec3 like entry 1, got number", "mixed")
+  T.fails(function() csv.write(tmp, {[1] = {1}}) end,
+    "bad argument #2 to 'csv.write' (column names must be strings", "number key")
+  T.fails(function() csv.write(tmp, {}) end,
+    "bad argument #2 to 'csv.write' (at least one column expected)", "empty")
+end)
+
 T.case("csv round trip", function()
   local xs, ys = {0, 0.1, 1 / 3}, {1e-300, -2.5, math.pi}
   csv.write(tmp, {x = xs, y = ys}, {"x", "y"})
@@ -95,7 +159,7 @@ T.case("errors", function()
   T.fails(function() csv.write(tmp, {x = {1, 2}, y = {1}}, {"x", "y"}) end,
     "bad argument #2 to 'csv.write' (column 'y' has 1 entries but column 'x' has 2)", "ragged")
   T.fails(function() csv.write(tmp, {x = {1}}, {"x", "z"}) end,
-    "column 'z' must be a list of numbers, got nil", "missing column")
+    "column 'z' must be a list of numbers or vec3, got nil", "missing column")
   T.fails(function() csv.write("/nonexistent-dir/a.csv", {x = {1}}, {"x"}) end,
     "bad argument #1 to 'csv.write' (cannot open '/nonexistent-dir/a.csv' for writing", "path")
 end)
