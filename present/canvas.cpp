@@ -50,14 +50,20 @@ char slope_glyph(double dx, double dy, double aspect) {
 
 Stroke solid_stroke(Ink ink) { return Stroke{ink, 1, 1, 0}; }
 
-Stroke patterned_stroke(Ink ink, int pattern_index) {
-  static const Stroke patterns[] = {
-      {0, 0x1, 1, 0},      // solid
-      {0, 0x3F, 9, 0},     // dashed: 6 on, 3 off
-      {0, 0x1, 3, 0},      // dotted: 1 on, 2 off
-      {0, 0x11F, 12, 0},   // dash-dot: 5 on, 3 off, 1 on, 3 off
+Stroke patterned_stroke(Ink ink, int pattern_index, bool braille) {
+  static const Stroke braille_patterns[] = {
+      {0, 0x1, 1, 0},     // solid
+      {0, 0xF, 6, 0},     // dashed: 4 on, 2 off
+      {0, 0x1, 2, 0},     // dotted: 1 on, 1 off
+      {0, 0x8F, 10, 0},   // dash-dot: 4 on, 3 off, 1 on, 2 off
   };
-  Stroke s = patterns[static_cast<unsigned>(pattern_index) % 4];
+  static const Stroke ascii_patterns[] = {
+      {0, 0x1, 1, 0},     // solid
+      {0, 0x3, 3, 0},     // dashed: 2 on, 1 off
+      {0, 0x1, 2, 0},     // dotted: 1 on, 1 off
+      {0, 0x17, 6, 0},    // dash-dot: 3 on, 1 off, 1 on, 1 off
+  };
+  Stroke s = (braille ? braille_patterns : ascii_patterns)[static_cast<unsigned>(pattern_index) % 4];
   s.ink = ink;
   return s;
 }

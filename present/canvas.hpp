@@ -25,9 +25,10 @@ struct Stroke {
   char glyph = 0;   // ASCII mode: every lit cell shows it; 0: a glyph for the line's slope
 };
 
-// Dash patterns, distinct at a glance in braille: solid, dashed, dotted, dash-dot.
+// Dash patterns, distinct at a glance: solid, dashed, dotted, dash-dot (index 0 to 3, then
+// again). Counted in dots, so shorter in ASCII, where a dot is a whole cell.
 Stroke solid_stroke(Ink ink);
-Stroke patterned_stroke(Ink ink, int pattern_index);  // index 0 is solid; cycles after 4
+Stroke patterned_stroke(Ink ink, int pattern_index, bool braille);
 
 class Canvas {
  public:

@@ -9,17 +9,6 @@
 namespace rigidlab::present {
 namespace {
 
-// Heckbert's nice number: 1, 2, 5 or 10 times the power of ten below x (> 0), the nearest one
-// when `round`, else the smallest not below x. 0 when x is too small or too large for that.
-double nice_number(double x, bool round) {
-  const double power = std::pow(10.0, std::floor(std::log10(x)));
-  if (!(power > 0.0) || !std::isfinite(power)) return 0.0;
-  const double f = x / power;
-  const double nice = round ? (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10)
-                            : (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10);
-  return nice * power;
-}
-
 std::string format(const char* spec, int precision, double x) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, spec, precision, x + 0.0);  // + 0.0: no "-0"
@@ -56,6 +45,15 @@ Axis end_ticks(double lo, double hi) {
 }
 
 }  // namespace
+
+double nice_number(double x, bool round) {
+  const double power = std::pow(10.0, std::floor(std::log10(x)));
+  if (!(power > 0.0) || !std::isfinite(power)) return 0.0;
+  const double f = x / power;
+  const double nice = round ? (f < 1.5 ? 1 : f < 3 ? 2 : f < 7 ? 5 : 10)
+                            : (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10);
+  return nice * power;
+}
 
 void check_chart(const Chart& chart) {
   if (chart.series.empty()) throw std::invalid_argument("a chart needs at least one series");

@@ -44,6 +44,10 @@ Axis nice_axis(double data_lo, double data_hi, int max_ticks);
 Axis x_axis(const Chart& chart, int max_ticks);
 Axis y_axis(const Chart& chart, int max_ticks);
 
+// Heckbert's nice number: 1, 2, 5 or 10 times the power of ten below x (> 0), the nearest one
+// when `round`, else the smallest not below x; 0 when x is too small or too large for that.
+double nice_number(double x, bool round);
+
 // Axis labels: four significant digits are enough to read a chart ("%.4g").
 std::string short_number(double x);
 

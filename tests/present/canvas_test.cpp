@@ -83,11 +83,17 @@ int dots_on_row(const Canvas& c, int dot_row) {
 }
 
 TEST(Canvas, DashPatternsLeaveGaps) {
-  const int counts_expected[4] = {60, 40, 20, 30};  // of 60 dots: all, 6 of 9, 1 of 3, 6 of 12
+  const int counts_expected[4] = {60, 40, 30, 30};  // of 60 dots: all, 4 of 6, 1 of 2, 5 of 10
   for (int p = 0; p < 4; ++p) {
     Canvas c(30, 1, true);
-    c.line(0, 0, 59, 0, patterned_stroke(1, p));
-    EXPECT_NEAR(dots_on_row(c, 0), counts_expected[p], 3) << "pattern " << p;
+    c.line(0, 0, 59, 0, patterned_stroke(1, p, true));
+    EXPECT_EQ(dots_on_row(c, 0), counts_expected[p]) << "pattern " << p;
+  }
+  const char* const ascii[4] = {"------------", "-- -- -- -- ", "- - - - - - ", "--- - --- - "};
+  for (int p = 0; p < 4; ++p) {
+    Canvas c(12, 1, false);
+    c.line(0, 0, 11, 0, patterned_stroke(1, p, false));
+    EXPECT_EQ(c.lines()[0], ascii[p]) << "pattern " << p;
   }
 }
 

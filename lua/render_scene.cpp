@@ -1,0 +1,166 @@
+#include "lua/render_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/body.hpp"
+#include "present/chart.hpp"
+
+namespace rigidlab::lua {
+namespace {
+
+using present::short_number;  // "%.4g": enough digits to read a legend
+constexpr auto number = short_number;
+
+present::SceneBody scene_body(const Body& b) {
+  present::SceneBody out;
+  out.position = b.position;
+  out.rotation = rotation(b);
+  const std::string prefix = is_static(b) ? "static " : "";
+  switch (b.shape.kind) {
+    case ShapeKind::box:
+      out.shape = present::BodyShape::box;
+      out.half_extents = b.shape.half_extents;
+      out.name = prefix + "box " + number(2 * b.shape.half_extents.x()) + "x" +
+                 number(2 * b.shape.half_extents.y()) + "x" + number(2 * b.shape.half_extents.z());
+      break;
+    case ShapeKind::sphere:
+      out.shape = present::BodyShape::sphere;
+      out.radius = b.shape.radius;
+      out.name = prefix + "sphere r " + number(b.shape.radius);
+      break;
+    case ShapeKind::none:
+      out.name = prefix + "point mass";
+      break;
+  }
+  return out;
+}
+
+// How far a body reaches from its COM (m); a point mass gets a tenth of `fallback`.
+double reach(const Body& b, double fallback) {
+  switch (b.shape.kind) {
+    case ShapeKind::box: return b.shape.half_extents.norm();
+    case ShapeKind::sphere: return b.shape.radius;
+    case ShapeKind::none: break;
+  }
+  return 0.1 * fallback;
+}
+
+// The size of the scene (for point masses) and the median reach of its bodies: one body far
+// larger than the rest does not make every arrow long.
+double typical_reach(const std::vector<Body>& bodies) {
+  if (bodies.empty()) return 1.0;
+  Vec3 lo = bodies[0].position, hi = lo;
+  for (const Body& b : bodies) {
+    lo = lo.cwiseMin(b.position);
+    hi = hi.cwiseMax(b.position);
+  }
+  const double extent = std::max((hi - lo).norm(), 1.0);
+  std::vector<double> reaches;
+  for (const Body& b : bodies) reaches.push_back(reach(b, extent));
+  std::nth_element(reaches.begin(), reaches.begin() + reaches.size() / 2, reaches.end());
+  const double median = reaches[reaches.size() / 2];
+  return median > 0.0 && std::isfinite(median) ? median : 0.1 * extent;
+}
+
+// The scale that makes the longest of `values` `length` long (0 when all are zero).
+double scale_for(const std::vector<Vec3>& values, double length, double& largest) {
+  largest = 0.0;
+  for (const Vec3& v : values)
+    if (is_finite(v)) largest = std::max(largest, stable_norm(v));
+  return largest > 0.0 && std::isfinite(largest) ? length / largest : 0.0;
+}
+
+void add_arrows(present::Scene& scene, present::Overlay kind, const std::vector<Body>& bodies,
+                const std::vector<Vec3>& values, double scale) {
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!is_static(bodies[i]) && is_finite(values[i]))
+      scene.arrows.push_back(present::SceneArrow{kind, bodies[i].position, scale * values[i]});
+}
+
+void add_frames(present::Scene& scene, const std::vector<Body>& bodies, double typical) {
+  for (const Body& b : bodies) {
+    const Mat3 R = rotation(b);
+    const double length = 1.3 * std::max(reach(b, 0.0), 0.5 * typical);
+    const present::Overlay axes[3] = {present::Overlay::axis_x, present::Overlay::axis_y,
+                                      present::Overlay::axis_z};
+    for (int k = 0; k < 3; ++k)
+      scene.arrows.push_back(present::SceneArrow{axes[k], b.position, length * R.col(k)});
+  }
+}
+
+void add_ellipsoids(present::Scene& scene, const std::vector<Body>& bodies, double omega_scale,
+                    double typical) {
+  for (const Body& b : bodies) {
+    if (is_static(b)) continue;
+    const SymmetricEigen principal = symmetric_eigen(b.inertia);  // ascending moments
+    const Vec3& I = principal.values;
+    const double two_t = b.angular_velocity.dot(world_inertia(b) * b.angular_velocity);
+    present::SceneEllipsoid e;
+    e.center = b.position;
+    e.axes = rotation(b) * principal.axes;
+    if (omega_scale > 0.0 && two_t > 0.0 && std::isfinite(two_t)) {
+      for (int k = 0; k < 3; ++k) e.semi_axes[k] = omega_scale * std::sqrt(two_t / I[k]);
+    } else {  // at rest: xᵀ I x = const, the longest semi-axis (smallest moment) at the reach
+      const double longest = std::max(reach(b, 0.0), 0.5 * typical);
+      for (int k = 0; k < 3; ++k) e.semi_axes[k] = longest * std::sqrt(I[0] / I[k]);
+    }
+    if (e.semi_axes.allFinite()) scene.ellipsoids.push_back(e);
+  }
+}
+
+void add_contacts(present::Scene& scene, const World& world, double typical) {
+  std::vector<Vec3> impulses;
+  for (const ContactInfo& c : world.contacts()) {
+    scene.markers.push_back(present::SceneMarker{present::Overlay::contact, c.point});
+    impulses.push_back(c.normal_impulse * c.normal + c.friction_impulse);
+  }
+  double largest = 0.0;
+  const double scale = scale_for(impulses, typical, largest);
+  for (std::size_t i = 0; i < impulses.size(); ++i)
+    if (scale > 0.0 && impulses[i].norm() > 0.0)
+      scene.arrows.push_back(present::SceneArrow{present::Overlay::impulse,
+                                                 world.contacts()[i].point, scale * impulses[i]});
+  if (largest > 0.0)
+    scene.notes.push_back({present::Overlay::impulse, "(largest " + number(largest) + " N s)", ""});
+}
+
+}  // namespace
+
+present::Scene scene_from_world(const World& world, const SceneRequest& request) {
+  present::Scene scene;
+  const std::vector<Body>& bodies = world.bodies();
+  for (const Body& b : bodies) scene.bodies.push_back(scene_body(b));
+  for (const Plane& p : world.planes()) scene.planes.push_back(present::ScenePlane{p.normal, p.offset});
+  const double typical = typical_reach(bodies);
+  std::vector<Vec3> omegas, moments;
+  for (const Body& b : bodies) {
+    omegas.push_back(is_static(b) ? Vec3::Zero() : b.angular_velocity);
+    moments.push_back(is_static(b) ? Vec3::Zero() : Vec3(world_inertia(b) * b.angular_velocity));
+  }
+  double omega_max = 0.0, momentum_max = 0.0;
+  const double omega_scale = scale_for(omegas, 1.5 * typical, omega_max);
+  const double momentum_scale = scale_for(moments, 1.5 * typical, momentum_max);
+  const std::string which = bodies.size() > 1 ? "largest " : "";
+  if (request.frames) add_frames(scene, bodies, typical);
+  if (request.ellipsoid) add_ellipsoids(scene, bodies, omega_scale, typical);
+  if (request.omega) {
+    add_arrows(scene, present::Overlay::omega, bodies, omegas, omega_scale);
+    scene.notes.push_back({present::Overlay::omega, "(" + which + number(omega_max) + " rad/s)", ""});
+  }
+  if (request.momentum) {
+    add_arrows(scene, present::Overlay::momentum, bodies, moments, momentum_scale);
+    scene.notes.push_back({present::Overlay::momentum,
+                           "(" + which + number(momentum_max) + " kg m²/s)",
+                           "(" + which + number(momentum_max) + " kg m^2/s)"});
+  }
+  if (request.ellipsoid && omega_scale > 0.0)
+    scene.notes.push_back({present::Overlay::ellipsoid, "ωᵀIω = 2T: the tip of ω stays on it",
+                           "w.I.w = 2T: the tip of w stays on it"});
+  if (request.contacts) add_contacts(scene, world, typical);
+  for (const std::vector<Vec3>& trail : request.trails)
+    if (trail.size() > 1) scene.curves.push_back(present::SceneCurve{present::Overlay::trail, trail});
+  return scene;
+}
+
+}  // namespace rigidlab::lua
