@@ -1,3 +1,5 @@
+// The binding toolbox, sections 1-4 of lua/binding.hpp: messages, checks, the math types'
+// helpers and the exception bridge. Types and registration are in lua/binding_types.cpp.
 #include "lua/binding.hpp"
 
 #include <cmath>
@@ -6,7 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <new>
+#include <string>
 
 namespace rigidlab::lua {
 
@@ -14,88 +16,97 @@ const char vec3_metatable_key = 0;
 const char mat3_metatable_key = 0;
 const char quat_metatable_key = 0;
 
+// Defined in lua/binding_types.cpp: the qualified name of the running C function (nullptr
+// outside one) and whether it was called as a method.
+const char* running_function_name(lua_State* L, bool& is_method);
+
+// ==== 1. messages ===============================================================================
+
 namespace {
-// Registry table: function (or topic table) -> light userdata pointing at its Entry.
-const char entries_key = 0;
 
-void push_entries_table(lua_State* L) {
-  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &entries_key) != LUA_TTABLE) {
-    lua_pop(L, 1);
-    lua_newtable(L);
-    lua_pushvalue(L, -1);
-    lua_rawsetp(L, LUA_REGISTRYINDEX, &entries_key);
+// arg_error with the reason already pushed as a string.
+[[noreturn]] void raise_argument(lua_State* L, int arg, const char* reason) {
+  bool is_method = false;
+  const char* name = running_function_name(L, is_method);
+  if (name == nullptr) luaL_error(L, "bad argument #%d (%s)", arg, reason);
+  if (is_method) {
+    --arg;  // do not count self, as luaL_argerror
+    if (arg == 0) luaL_error(L, "calling '%s' on bad self (%s)", name, reason);
   }
+  luaL_error(L, "bad argument #%d to '%s' (%s)", arg, name, reason);
+  std::abort();  // luaL_error does not return
 }
 
-// The qualified name of the running C function and whether it was called as a method.
-const char* running_function_name(lua_State* L, lua_Debug& ar, bool& is_method) {
-  is_method = false;
-  if (!lua_getstack(L, 0, &ar)) return nullptr;
-  lua_getinfo(L, "nf", &ar);
-  const Entry* entry = find_entry(L, -1);
-  lua_pop(L, 1);
-  is_method = ar.namewhat != nullptr && std::strcmp(ar.namewhat, "method") == 0;
-  if (entry != nullptr) return entry->qualified;
-  return ar.name != nullptr ? ar.name : "?";
+[[noreturn]] void raise_field(lua_State* L, const char* type, const char* name,
+                              const char* reason) {
+  luaL_error(L, "bad field '%s' of %s (%s)", name, type, reason);
+  std::abort();
 }
+
+// "a number", "an integer": the article for a type name in "field 'x' must be a number".
+const char* article(const char* noun) {
+  return std::strchr("aeiou", noun[0]) != nullptr && noun[0] != '\0' ? "an" : "a";
+}
+
 }  // namespace
-
-void register_entries(lua_State* L, int table_index, const Entry* entries, int upvalues) {
-  table_index = lua_absindex(L, table_index);
-  const int first_upvalue = lua_gettop(L) - upvalues + 1;
-  push_entries_table(L);
-  for (const Entry* e = entries; e->name != nullptr; ++e) {
-    for (int i = 0; i < upvalues; ++i) lua_pushvalue(L, first_upvalue + i);
-    lua_pushcclosure(L, e->function, upvalues);
-    lua_pushvalue(L, -1);
-    lua_setfield(L, table_index, e->name);
-    lua_pushlightuserdata(L, const_cast<Entry*>(e));
-    lua_rawset(L, -3);
-  }
-  lua_pop(L, 1 + upvalues);
-}
-
-void register_topic(lua_State* L, int value_index, const char* qualified, const char* doc) {
-  // Topics need an Entry that outlives the state: they are static strings, so a small
-  // userdata kept alive by the entries table holds the Entry.
-  value_index = lua_absindex(L, value_index);
-  push_entries_table(L);
-  lua_pushvalue(L, value_index);
-  auto* entry = static_cast<Entry*>(lua_newuserdatauv(L, sizeof(Entry), 0));
-  *entry = Entry{qualified, nullptr, qualified, qualified, doc};
-  lua_rawset(L, -3);
-  lua_pop(L, 1);
-}
-
-const Entry* find_entry(lua_State* L, int index) {
-  index = lua_absindex(L, index);
-  push_entries_table(L);
-  lua_pushvalue(L, index);
-  lua_rawget(L, -2);
-  const Entry* entry = static_cast<const Entry*>(lua_touserdata(L, -1));
-  lua_pop(L, 2);
-  return entry;
-}
 
 void arg_error(lua_State* L, int arg, const char* format, ...) {
   va_list args;
   va_start(args, format);
-  const char* message = lua_pushvfstring(L, format, args);
+  const char* reason = lua_pushvfstring(L, format, args);
   va_end(args);
-  lua_Debug ar;
-  bool is_method = false;
-  const char* name = running_function_name(L, ar, is_method);
-  if (name == nullptr) luaL_error(L, "bad argument #%d (%s)", arg, message);
-  if (is_method) {
-    --arg;  // do not count self, as luaL_argerror
-    if (arg == 0) luaL_error(L, "calling '%s' on bad self (%s)", name, message);
-  }
-  luaL_error(L, "bad argument #%d to '%s' (%s)", arg, name, message);
-  std::abort();  // luaL_error does not return
+  raise_argument(L, arg, reason);
 }
 
 void type_error(lua_State* L, int arg, const char* expected) {
   arg_error(L, arg, "%s expected, got %s", expected, value_type_name(L, arg));
+}
+
+void field_error(lua_State* L, const char* type, const char* name, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  const char* reason = lua_pushvfstring(L, format, args);
+  va_end(args);
+  raise_field(L, type, name, reason);
+}
+
+void function_error(lua_State* L, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  const char* message = lua_pushvfstring(L, format, args);
+  va_end(args);
+  bool is_method = false;
+  const char* name = running_function_name(L, is_method);
+  luaL_error(L, "'%s': %s", name != nullptr ? name : "?", message);
+  std::abort();
+}
+
+void Where::error(lua_State* L, const char* format, ...) const {
+  va_list args;
+  va_start(args, format);
+  const char* reason = lua_pushvfstring(L, format, args);
+  va_end(args);
+  switch (kind_) {
+    case Kind::argument:
+      if (name_ != nullptr) reason = lua_pushfstring(L, "%s %s", name_, reason);
+      raise_argument(L, arg_, reason);
+    case Kind::field:
+      raise_argument(L, arg_, lua_pushfstring(L, "field '%s' %s", name_, reason));
+    case Kind::property:
+      break;
+  }
+  raise_field(L, type_, name_, reason);
+}
+
+void Where::type_error(lua_State* L, int value, const char* expected) const {
+  value = lua_absindex(L, value);
+  const char* got = value_type_name(L, value);
+  if (kind_ == Kind::field)
+    raise_argument(L, arg_, lua_pushfstring(L, "field '%s' must be %s %s, got %s", name_,
+                                            article(expected), expected, got));
+  const char* reason = lua_pushfstring(L, "%s expected, got %s", expected, got);
+  if (kind_ == Kind::argument) raise_argument(L, arg_, reason);
+  raise_field(L, type_, name_, reason);
 }
 
 namespace {
@@ -138,35 +149,33 @@ const char* value_type_name(lua_State* L, int index) {
   return name;
 }
 
-void field_error(lua_State* L, const char* type, const char* name, const char* format, ...) {
-  va_list args;
-  va_start(args, format);
-  const char* reason = lua_pushvfstring(L, format, args);
-  va_end(args);
-  luaL_error(L, "bad field '%s' of %s (%s)", name, type, reason);
-  std::abort();  // luaL_error does not return
-}
-
-void field_type_error(lua_State* L, const char* type, const char* name, const char* expected,
-                      int value_index) {
-  field_error(L, type, name, "%s expected, got %s", expected, value_type_name(L, value_index));
-}
-
-double check_field_finite(lua_State* L, const char* type, const char* name, int value_index) {
-  if (lua_type(L, value_index) != LUA_TNUMBER)
-    field_type_error(L, type, name, "number", value_index);
-  const double x = lua_tonumber(L, value_index);
-  if (!std::isfinite(x))
-    field_error(L, type, name, "must be finite, got %s", format_number(x).c_str());
-  return x;
-}
-
-const Vec3& check_field_vec3(lua_State* L, const char* type, const char* name, int value_index) {
-  const Vec3* v = test_vec3(L, value_index);
-  if (v == nullptr) field_type_error(L, type, name, "vec3", value_index);
-  if (!is_finite(*v))
-    field_error(L, type, name, "must be finite, got %s", luaL_tolstring(L, value_index, nullptr));
-  return *v;
+const char* push_shown_value(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  switch (lua_type(L, index)) {
+    case LUA_TNUMBER:
+      if (lua_isinteger(L, index)) return lua_pushfstring(L, "%I", lua_tointeger(L, index));
+      return lua_pushstring(L, format_number(lua_tonumber(L, index)).c_str());
+    case LUA_TSTRING: {
+      std::size_t length = 0;
+      const char* s = lua_tolstring(L, index, &length);
+      constexpr std::size_t shown = 40;  // a message quotes the start of a long string
+      if (length <= shown) return lua_pushfstring(L, "'%s'", s);
+      lua_pushliteral(L, "'");
+      lua_pushlstring(L, s, shown);
+      lua_pushfstring(L, "...' (%I bytes)", static_cast<lua_Integer>(length));
+      lua_concat(L, 3);
+      return lua_tostring(L, -1);
+    }
+    default: break;
+  }
+  if (const Vec3* v = test_vec3(L, index))
+    return lua_pushfstring(L, "(%s, %s, %s)", format_number(v->x()).c_str(),
+                           format_number(v->y()).c_str(), format_number(v->z()).c_str());
+  if (const Quat* q = test_quat(L, index))
+    return lua_pushfstring(L, "quat(%s, %s, %s, %s)", format_number(q->w()).c_str(),
+                           format_number(q->x()).c_str(), format_number(q->y()).c_str(),
+                           format_number(q->z()).c_str());
+  return lua_pushstring(L, value_type_name(L, index));
 }
 
 const char* push_key_name(lua_State* L, int index) {
@@ -193,18 +202,6 @@ void stepping_error(lua_State* L, int arg, const char* what) {
             "apply forces", what);
 }
 
-void function_error(lua_State* L, const char* format, ...) {
-  va_list args;
-  va_start(args, format);
-  const char* message = lua_pushvfstring(L, format, args);
-  va_end(args);
-  lua_Debug ar;
-  bool is_method = false;
-  const char* name = running_function_name(L, ar, is_method);
-  luaL_error(L, "'%s': %s", name != nullptr ? name : "?", message);
-  std::abort();
-}
-
 void check_no_extra_args(lua_State* L, int max_args) {
   const int top = lua_gettop(L);
   if (top > max_args)
@@ -212,31 +209,162 @@ void check_no_extra_args(lua_State* L, int max_args) {
               max_args == 1 ? "" : "s", top);
 }
 
-double check_finite(lua_State* L, int arg, const char* what) {
-  if (lua_type(L, arg) != LUA_TNUMBER) type_error(L, arg, "number");
-  const double x = lua_tonumber(L, arg);
-  if (!std::isfinite(x))
-    arg_error(L, arg, "%s must be finite, got %s", what, format_number(x).c_str());
+void immutable_error(lua_State* L, const char* type, int key_index, const char* how) {
+  field_error(L, type, push_key_name(L, key_index),
+              "read-only: %s values are immutable, like numbers; build a new one, e.g. %s", type,
+              how);
+}
+
+// ==== 2. checks =================================================================================
+
+double check_number(lua_State* L, int index, const Where& where) {
+  if (lua_type(L, index) != LUA_TNUMBER) where.type_error(L, index, "number");
+  const double x = lua_tonumber(L, index);
+  if (!std::isfinite(x)) where.error(L, "must be finite, got %s", format_number(x).c_str());
   return x;
 }
 
-double check_positive(lua_State* L, int arg, const char* what) {
-  const double x = check_finite(L, arg, what);
-  if (!(x > 0.0)) arg_error(L, arg, "%s must be > 0, got %s", what, format_number(x).c_str());
-  return x;
-}
-
-double check_nonnegative(lua_State* L, int arg, const char* what) {
-  const double x = check_finite(L, arg, what);
-  if (!(x >= 0.0)) arg_error(L, arg, "%s must be >= 0, got %s", what, format_number(x).c_str());
-  return x;
+double check_number(lua_State* L, int index, const Where& where, double min, double max,
+                    const char* rule) {
+  if (lua_type(L, index) != LUA_TNUMBER) where.type_error(L, index, "number");
+  const double x = lua_tonumber(L, index);
+  if (x >= min && x <= max && std::isfinite(x)) return x;
+  const std::string got = format_number(x);
+  if (rule != nullptr) where.error(L, "must be %s, got %s", rule, got.c_str());
+  if (!std::isfinite(x)) where.error(L, "must be finite, got %s", got.c_str());
+  if (std::isinf(max)) where.error(L, "must be >= %s, got %s", format_number(min).c_str(), got.c_str());
+  if (std::isinf(min)) where.error(L, "must be <= %s, got %s", format_number(max).c_str(), got.c_str());
+  where.error(L, "must be in [%s, %s], got %s", format_number(min).c_str(),
+              format_number(max).c_str(), got.c_str());
 }
 
 bool to_integer(lua_State* L, int index, lua_Integer& out) {
   if (lua_type(L, index) != LUA_TNUMBER) return false;
   int is_integer = 0;
-  out = lua_tointegerx(L, index, &is_integer);
+  out = lua_tointegerx(L, index, &is_integer);  // 2.0 converts; 2.5, 1e100, nan do not
   return is_integer != 0;
+}
+
+lua_Integer check_integer(lua_State* L, int index, const Where& where, lua_Integer min,
+                          lua_Integer max) {
+  index = lua_absindex(L, index);
+  lua_Integer n = 0;
+  if (!to_integer(L, index, n) || n < min || n > max)
+    where.error(L, "must be an integer from %I to %I, got %s", min, max,
+                push_shown_value(L, index));
+  return n;
+}
+
+int check_option(lua_State* L, int index, const Where& where, const char* const* names,
+                 std::size_t count) {
+  index = lua_absindex(L, index);
+  if (lua_type(L, index) == LUA_TSTRING) {
+    const char* value = lua_tostring(L, index);
+    std::size_t length = 0;
+    lua_tolstring(L, index, &length);
+    for (std::size_t i = 0; i < count && names[i] != nullptr; ++i)
+      if (std::strlen(names[i]) == length && std::strcmp(value, names[i]) == 0)
+        return static_cast<int>(i);
+  }
+  luaL_Buffer choices;
+  luaL_buffinit(L, &choices);
+  for (std::size_t i = 0; i < count && names[i] != nullptr; ++i) {
+    if (i > 0) luaL_addstring(&choices, ", ");
+    luaL_addchar(&choices, '\'');
+    luaL_addstring(&choices, names[i]);
+    luaL_addchar(&choices, '\'');
+  }
+  luaL_pushresult(&choices);
+  const char* list = lua_tostring(L, -1);
+  const char* got = lua_type(L, index) == LUA_TSTRING ? push_shown_value(L, index)
+                                                      : value_type_name(L, index);
+  where.error(L, "must be one of %s, got %s", list, got);
+}
+
+bool check_boolean(lua_State* L, int index, const Where& where) {
+  if (!lua_isboolean(L, index)) where.type_error(L, index, "boolean");
+  return lua_toboolean(L, index) != 0;
+}
+
+const char* check_name(lua_State* L, int index, const Where& where, std::size_t* length) {
+  if (lua_type(L, index) != LUA_TSTRING) where.type_error(L, index, "string");
+  std::size_t size = 0;
+  const char* s = lua_tolstring(L, index, &size);
+  if (const void* nul = std::memchr(s, '\0', size))
+    where.error(L, "must not contain a NUL byte ('\\0' at byte %I of %I; C reads the name "
+                "only up to it)",
+                static_cast<lua_Integer>(static_cast<const char*>(nul) - s + 1),
+                static_cast<lua_Integer>(size));
+  if (length != nullptr) *length = size;
+  return s;
+}
+
+const Vec3& check_vec3(lua_State* L, int index, const Where& where) {
+  const Vec3* v = test_vec3(L, index);
+  if (v == nullptr) where.type_error(L, index, "vec3");
+  if (!is_finite(*v)) where.error(L, "must be finite, got %s", push_shown_value(L, index));
+  return *v;
+}
+
+double check_finite(lua_State* L, int arg, const char* what) {
+  return check_number(L, arg, Where::argument(arg, what));
+}
+
+namespace {
+// A finite number that `holds` (> 0, >= 0), else "must be RULE, got x".
+template <class Rule>
+double check_finite_where(lua_State* L, int index, const Where& where, Rule holds,
+                          const char* rule) {
+  const double x = check_number(L, index, where);
+  if (!holds(x)) where.error(L, "must be %s, got %s", rule, format_number(x).c_str());
+  return x;
+}
+}  // namespace
+
+double check_positive(lua_State* L, int arg, const char* what) {
+  return check_finite_where(L, arg, Where::argument(arg, what), [](double x) { return x > 0; },
+                            "> 0");
+}
+
+double check_nonnegative(lua_State* L, int arg, const char* what) {
+  return check_finite_where(L, arg, Where::argument(arg, what), [](double x) { return x >= 0; },
+                            ">= 0");
+}
+
+void check_fields(lua_State* L, int arg, const char* const* allowed) {
+  check_fields(L, arg, allowed, Where::argument(arg));
+}
+
+void check_fields(lua_State* L, int table, const char* const* allowed, const Where& where) {
+  table = lua_absindex(L, table);
+  lua_pushnil(L);
+  while (lua_next(L, table) != 0) {
+    lua_pop(L, 1);  // value
+    bool known = false;
+    if (lua_type(L, -1) == LUA_TSTRING) {
+      std::size_t length = 0;
+      const char* key = lua_tolstring(L, -1, &length);
+      for (const char* const* a = allowed; *a != nullptr && !known; ++a)
+        known = std::strlen(*a) == length && std::strcmp(*a, key) == 0;
+    }
+    if (known) continue;
+    luaL_Buffer list;
+    luaL_buffinit(L, &list);
+    for (const char* const* a = allowed; *a != nullptr; ++a) {
+      if (a != allowed) luaL_addstring(&list, ", ");
+      luaL_addstring(&list, *a);
+    }
+    luaL_pushresult(&list);
+    const int list_index = lua_gettop(L);
+    const char* key = push_key_name(L, -2);  // no __tostring runs
+    where.error(L, "unknown field '%s' (fields are: %s)", key, lua_tostring(L, list_index));
+  }
+}
+
+void check_fields(lua_State* L, int arg, const std::vector<const char*>& allowed) {
+  std::vector<const char*> terminated(allowed);
+  terminated.push_back(nullptr);
+  check_fields(L, arg, terminated.data());
 }
 
 lua_Integer check_sequence(lua_State* L, int arg, const char* expected, const char* what) {
@@ -247,7 +375,7 @@ lua_Integer check_sequence(lua_State* L, int arg, const char* expected, const ch
   while (lua_next(L, arg) != 0) {
     lua_pop(L, 1);
     if (lua_isinteger(L, -1) && lua_tointeger(L, -1) >= 1 && lua_tointeger(L, -1) <= n) continue;
-    const char* key = luaL_tolstring(L, -1, nullptr);
+    const char* key = push_key_name(L, -1);
     if (n == 0)
       arg_error(L, arg, "%s: unexpected key '%s' (the entries of a list are numbered 1, 2, ...; "
                         "this one has none)", what, key);
@@ -256,23 +384,49 @@ lua_Integer check_sequence(lua_State* L, int arg, const char* expected, const ch
   return n;
 }
 
-void new_metatable(lua_State* L, const char* type_name, const void* key) {
-  lua_createtable(L, 0, 16);
-  lua_pushstring(L, type_name);
-  lua_setfield(L, -2, "__name");
-  lua_pushstring(L, type_name);
-  lua_setfield(L, -2, "__metatable");
-  lua_pushvalue(L, -1);
-  lua_rawsetp(L, LUA_REGISTRYINDEX, key);
+int get_field(lua_State* L, int arg, const char* name) { return lua_getfield(L, arg, name); }
+
+namespace {
+// Field `name` of the table at `arg` checked by `check` (value index, Where), popped again.
+template <class T, class Check>
+T read_field(lua_State* L, int arg, const char* name, const T& fallback, bool required,
+             Check&& check) {
+  arg = lua_absindex(L, arg);
+  if (get_field(L, arg, name) == LUA_TNIL) {
+    lua_pop(L, 1);
+    if (required) arg_error(L, arg, "field '%s' is required", name);
+    return fallback;
+  }
+  const T value = check(lua_gettop(L), Where::field(arg, name));
+  lua_pop(L, 1);
+  return value;
+}
+}  // namespace
+
+double field_finite(lua_State* L, int arg, const char* name, double fallback, bool required) {
+  return read_field(L, arg, name, fallback, required,
+                    [L](int i, const Where& w) { return check_number(L, i, w); });
 }
 
-bool has_metatable(lua_State* L, int index, const void* key) {
-  if (lua_type(L, index) != LUA_TUSERDATA || !lua_getmetatable(L, index)) return false;
-  lua_rawgetp(L, LUA_REGISTRYINDEX, key);
-  const bool same = lua_rawequal(L, -1, -2);
-  lua_pop(L, 2);
-  return same;
+double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required) {
+  return read_field(L, arg, name, fallback, required, [L](int i, const Where& w) {
+    return check_finite_where(L, i, w, [](double x) { return x > 0; }, "> 0");
+  });
 }
+
+double field_nonnegative(lua_State* L, int arg, const char* name, double fallback,
+                         bool required) {
+  return read_field(L, arg, name, fallback, required, [L](int i, const Where& w) {
+    return check_finite_where(L, i, w, [](double x) { return x >= 0; }, ">= 0");
+  });
+}
+
+Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required) {
+  return read_field(L, arg, name, fallback, required,
+                    [L](int i, const Where& w) { return Vec3(check_vec3(L, i, w)); });
+}
+
+// ==== the math types ============================================================================
 
 Vec3& check_vec3(lua_State* L, int arg) {
   Vec3* v = test_vec3(L, arg);
@@ -290,103 +444,61 @@ Quat& check_quat(lua_State* L, int arg) {
   return *q;
 }
 
-int get_field(lua_State* L, int arg, const char* name) { return lua_getfield(L, arg, name); }
+// ==== 4. the exception bridge ===================================================================
 
-void check_fields(lua_State* L, int arg, const char* const* allowed) {
-  arg = lua_absindex(L, arg);
-  lua_pushnil(L);
-  while (lua_next(L, arg) != 0) {
-    lua_pop(L, 1);  // value
-    bool known = false;
-    if (lua_type(L, -1) == LUA_TSTRING) {
-      const char* key = lua_tostring(L, -1);
-      for (const char* const* a = allowed; *a != nullptr && !known; ++a)
-        known = std::strcmp(*a, key) == 0;
-    }
-    if (!known) {
-      luaL_Buffer list;
-      luaL_buffinit(L, &list);
-      for (const char* const* a = allowed; *a != nullptr; ++a) {
-        if (a != allowed) luaL_addstring(&list, ", ");
-        luaL_addstring(&list, *a);
-      }
-      luaL_pushresult(&list);
-      const int list_index = lua_gettop(L);  // luaL_tolstring below pushes one more
-      const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2)
-                                                        : luaL_tolstring(L, -2, nullptr);
-      arg_error(L, arg, "unknown field '%s' (fields are: %s)", key, lua_tostring(L, list_index));
-    }
-  }
+void Failure::hold(const std::exception& e) {
+  kind_ = Kind::other;
+  std::snprintf(message_, sizeof message_, "%s", e.what());  // no allocation
+}
+
+void Failure::raise(lua_State* L, int blame) const {
+  if (kind_ == Kind::memory) memory_error(L);
+  if (blame > 0) arg_error(L, blame, "%s", message_);
+  function_error(L, "%s", message_);
 }
 
 namespace {
-double field_number(lua_State* L, int arg, const char* name, double fallback, bool required,
-                    bool positive) {
-  const int type = get_field(L, arg, name);
-  if (type == LUA_TNIL) {
-    lua_pop(L, 1);
-    if (required) arg_error(L, arg, "field '%s' is required", name);
-    return fallback;
-  }
-  if (type != LUA_TNUMBER)
-    arg_error(L, arg, "field '%s' must be a number, got %s", name, luaL_typename(L, -1));
-  const double x = lua_tonumber(L, -1);
-  lua_pop(L, 1);
-  if (!std::isfinite(x))
-    arg_error(L, arg, "field '%s' must be finite, got %s", name, format_number(x).c_str());
-  if (positive && !(x > 0.0))
-    arg_error(L, arg, "field '%s' must be > 0, got %s", name, format_number(x).c_str());
-  return x;
-}
-}  // namespace
-
-double field_finite(lua_State* L, int arg, const char* name, double fallback, bool required) {
-  return field_number(L, arg, name, fallback, required, false);
-}
-
-double field_positive(lua_State* L, int arg, const char* name, double fallback, bool required) {
-  return field_number(L, arg, name, fallback, required, true);
-}
-
-Vec3 field_vec3(lua_State* L, int arg, const char* name, const Vec3& fallback, bool required) {
-  const int type = get_field(L, arg, name);
-  if (type == LUA_TNIL) {
-    lua_pop(L, 1);
-    if (required) arg_error(L, arg, "field '%s' is required", name);
-    return fallback;
-  }
-  const Vec3* v = test_vec3(L, -1);
-  if (v == nullptr)
-    arg_error(L, arg, "field '%s' must be a vec3, got %s", name, value_type_name(L, -1));
-  // A vec3 can hold inf (a row of a static body's infinite tensor); no field takes one.
-  if (!is_finite(*v))
-    arg_error(L, arg, "field '%s' must be finite, got %s", name, luaL_tolstring(L, -1, nullptr));
-  const Vec3 result = *v;
-  lua_pop(L, 1);
-  return result;
-}
-
-namespace {
-const char stop_check_key = 0;
-struct StopCheckEntry {
-  StopCheck check;
+// An allocator that refuses to grow anything and passes frees and shrinks to the state's own.
+struct Refusing {
+  lua_Alloc original;
   void* data;
+  static void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_size) {
+    const auto* r = static_cast<const Refusing*>(self);
+    if (new_size != 0 && (block == nullptr || new_size > old_size)) return nullptr;
+    return r->original(r->data, block, old_size, new_size);
+  }
+};
+
+// Puts the state's allocator back however the scope is left (Lua's errors are C++ exceptions
+// in the C++ build of Lua that rigidlab links, so the destructor runs as the error unwinds).
+class RefuseGrowth {
+ public:
+  explicit RefuseGrowth(lua_State* L) : L_(L) {
+    refusing_.original = lua_getallocf(L, &refusing_.data);
+    lua_setallocf(L, &Refusing::allocate, &refusing_);
+  }
+  ~RefuseGrowth() { lua_setallocf(L_, refusing_.original, refusing_.data); }
+  RefuseGrowth(const RefuseGrowth&) = delete;
+  RefuseGrowth& operator=(const RefuseGrowth&) = delete;
+
+ private:
+  lua_State* L_;
+  Refusing refusing_{};
 };
 }  // namespace
 
-void set_stop_check(lua_State* L, StopCheck check, void* data) {
-  auto* entry = static_cast<StopCheckEntry*>(lua_newuserdatauv(L, sizeof(StopCheckEntry), 0));
-  *entry = StopCheckEntry{check, data};
-  lua_rawsetp(L, LUA_REGISTRYINDEX, &stop_check_key);
-}
-
-StopPoller::StopPoller(lua_State* L) : L_(L) {
-  lua_rawgetp(L, LUA_REGISTRYINDEX, &stop_check_key);
-  if (const auto* entry = static_cast<const StopCheckEntry*>(lua_touserdata(L, -1))) {
-    check_ = entry->check;
-    data_ = entry->data;
+void memory_error(lua_State* L) {
+  // Lua has no API to raise its memory error (LUA_ERRMEM with the preallocated "not enough
+  // memory"); an allocation that fails raises it. So one is made to fail: Lua collects
+  // garbage, tries once more, and raises exactly the error its allocator failing would.
+  {
+    RefuseGrowth refuse(L);
+    lua_newuserdatauv(L, 64, 0);
   }
-  lua_pop(L, 1);
+  // Not reached; as lauxlib's own fallback (lauxlib.c resizebox) should it ever be.
+  lua_pushliteral(L, "not enough memory");
+  lua_error(L);
+  std::abort();
 }
 
 }  // namespace rigidlab::lua

@@ -9,6 +9,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "engine/inertia.hpp"
@@ -31,6 +32,120 @@ const char* shape_name(ShapeKind kind) {
   return "none";
 }
 
+// ---- properties ------------------------------------------------------------------------------
+
+// Getters copy the value before pushing: the push allocates, which may run a finaliser that
+// moves the body's store (w:add of another body).
+template <class T, T Body::*member>
+void get_member(lua_State* L, int object, const Property&) {
+  const T value = check_body(L, object).*member;
+  if constexpr (std::is_same_v<T, double>) lua_pushnumber(L, value);
+  else if constexpr (std::is_same_v<T, Vec3>) push_vec3(L, value);
+  else if constexpr (std::is_same_v<T, Quat>) push_quat(L, value);
+  else push_mat3(L, value);
+}
+
+void get_static(lua_State* L, int object, const Property&) {
+  lua_pushboolean(L, is_static(check_body(L, object)));
+}
+
+void get_shape(lua_State* L, int object, const Property&) {
+  lua_pushstring(L, shape_name(check_body(L, object).shape.kind));
+}
+
+void get_radius(lua_State* L, int object, const Property&) {
+  const Shape shape = check_body(L, object).shape;
+  if (shape.kind == ShapeKind::sphere) lua_pushnumber(L, shape.radius);
+  else lua_pushnil(L);
+}
+
+void get_size(lua_State* L, int object, const Property&) {
+  const Shape shape = check_body(L, object).shape;
+  if (shape.kind == ShapeKind::box) push_vec3(L, 2.0 * shape.half_extents);
+  else lua_pushnil(L);
+}
+
+void set_position(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const Vec3 p = check_vec3(L, value, where);
+  check_body(L, object).position = p;
+}
+
+// velocity and angular_velocity: a static body's stay zero.
+template <Vec3 Body::*member>
+void set_motion(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const Vec3 v = check_vec3(L, value, where);
+  Body& b = check_body(L, object);
+  if (is_static(b) && v != Vec3::Zero())
+    where.error(L, "must be zero for a static body (it never moves), got %s",
+                push_shown_value(L, value));
+  b.*member = v;
+}
+
+void set_orientation(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const Quat* q = test_quat(L, value);
+  if (q == nullptr) where.type_error(L, value, "quat");
+  if (!is_finite(*q)) where.error(L, "must be finite, got %s", push_shown_value(L, value));
+  if (is_zero(*q)) where.error(L, "must be a rotation, got the zero quaternion");
+  const Quat rotation = unit(*q);
+  check_body(L, object).orientation = rotation;
+}
+
+// restitution e in [0, 1] and friction μ >= 0: engine/plane.hpp's material rules, for bodies
+// and planes alike.
+double check_restitution(lua_State* L, int value, const Where& where) {
+  return check_number(L, value, where, 0.0, 1.0, "in [0, 1]");
+}
+
+double check_friction(lua_State* L, int value, const Where& where) {
+  return check_number(L, value, where, 0.0, HUGE_VAL, "finite and >= 0");
+}
+
+void set_restitution(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const double e = check_restitution(L, value, where);
+  check_body(L, object).restitution = e;
+}
+
+void set_friction(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const double mu = check_friction(L, value, where);
+  check_body(L, object).friction = mu;
+}
+
+constexpr const char* made_fixed = "mass properties and shape are fixed when the body is made";
+
+const Property properties[] = {
+    {"position", get_member<Vec3, &Body::position>, set_position, "vec3, m: the COM, world",
+     nullptr, nullptr},
+    {"orientation", get_member<Quat, &Body::orientation>, set_orientation,
+     "quat, body to world (normalised when set)", nullptr, nullptr},
+    {"velocity", get_member<Vec3, &Body::velocity>, set_motion<&Body::velocity>,
+     "vec3, m/s: of the COM, world", nullptr, nullptr},
+    {"angular_velocity", get_member<Vec3, &Body::angular_velocity>,
+     set_motion<&Body::angular_velocity>, "vec3, rad/s, world", nullptr, nullptr},
+    {"restitution", get_member<double, &Body::restitution>, set_restitution,
+     "e in [0, 1] (default 0): contacts use max(ea, eb)", nullptr, nullptr},
+    {"friction", get_member<double, &Body::friction>, set_friction,
+     "Coulomb μ >= 0 (default 0.6): contacts use √(μa μb)", nullptr, nullptr},
+    {"mass", get_member<double, &Body::mass>, nullptr, "kg (math.huge: static)", made_fixed,
+     nullptr},
+    {"inv_mass", get_member<double, &Body::inverse_mass>, nullptr, "1/kg (0: static)",
+     made_fixed, nullptr},
+    {"inertia", get_member<Mat3, &Body::inertia>, nullptr, "mat3, kg m², body frame, about the COM",
+     made_fixed, nullptr},
+    {"inv_inertia", get_member<Mat3, &Body::inverse_inertia>, nullptr,
+     "mat3, 1/(kg m²), body frame (0: static)", made_fixed, nullptr},
+    {"static", get_static, nullptr, "true for an immovable body", made_fixed, nullptr},
+    {"shape", get_shape, nullptr, "\"none\", \"sphere\" or \"box\"", made_fixed, nullptr},
+    {"radius", get_radius, nullptr, "m, of a sphere (nil otherwise)", made_fixed, nullptr},
+    {"size", get_size, nullptr, "vec3, m, full edges of a box (nil otherwise)", made_fixed,
+     nullptr},
+    {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+void check_body_settable(lua_State* L, int object, const Where& where) {
+  if (check_body_handle(L, object).store->stepping())
+    where.error(L, "the world is stepping: it cannot be set until world:step returns; force "
+                   "callbacks may only apply forces");
+}
+
 // ---- constructors ----------------------------------------------------------------------------
 
 // mass and static of a constructor table. Returns true for a static body; `mass` is set for a
@@ -38,9 +153,7 @@ const char* shape_name(ShapeKind kind) {
 bool read_mass(lua_State* L, double& mass) {
   bool is_static = false, static_given = false;
   if (get_field(L, 1, "static") != LUA_TNIL) {
-    if (!lua_isboolean(L, -1))
-      arg_error(L, 1, "field 'static' must be a boolean, got %s", value_type_name(L, -1));
-    is_static = lua_toboolean(L, -1);
+    is_static = check_boolean(L, -1, Where::field(1, "static"));
     static_given = true;
   }
   lua_pop(L, 1);
@@ -50,8 +163,7 @@ bool read_mass(lua_State* L, double& mass) {
     if (!is_static) arg_error(L, 1, "field 'mass' is required (or static = true)");
     return true;
   }
-  if (type != LUA_TNUMBER)
-    arg_error(L, 1, "field 'mass' must be a number, got %s", value_type_name(L, -1));
+  if (type != LUA_TNUMBER) Where::field(1, "mass").type_error(L, -1, "number");
   mass = lua_tonumber(L, -1);
   lua_pop(L, 1);
   if (mass == std::numeric_limits<double>::infinity()) {
@@ -69,79 +181,44 @@ bool read_mass(lua_State* L, double& mass) {
   return false;
 }
 
-Quat field_orientation(lua_State* L) {
-  if (get_field(L, 1, "orientation") == LUA_TNIL) {
-    lua_pop(L, 1);
-    return Quat::Identity();
-  }
-  const Quat* q = test_quat(L, -1);
-  if (q == nullptr) arg_error(L, 1, "field 'orientation' must be a quat, got %s", value_type_name(L, -1));
-  if (!is_finite(*q)) arg_error(L, 1, "field 'orientation' must be finite");
-  if (is_zero(*q))
-    arg_error(L, 1, "field 'orientation' is the zero quaternion, which is not a rotation");
-  const Quat rotation = unit(*q);
+// API.md "Bodies": an immovable body takes no inertia (its inverse inertia is 0).
+void refuse_static_inertia(lua_State* L) {
+  if (get_field(L, 1, "inertia") != LUA_TNIL)
+    arg_error(L, 1, "field 'inertia' must be absent: a static body (static = true or mass = "
+                    "math.huge) takes no inertia (its inverse inertia is 0)");
   lua_pop(L, 1);
-  return rotation;
 }
 
-// position, orientation, velocity, angular_velocity of a constructor table into b.
-void read_state(lua_State* L, Body& b) {
-  b.position = field_vec3(L, 1, "position", Vec3::Zero(), false);
-  b.orientation = field_orientation(L);
-  b.velocity = field_vec3(L, 1, "velocity", Vec3::Zero(), false);
-  b.angular_velocity = field_vec3(L, 1, "angular_velocity", Vec3::Zero(), false);
-  if (is_static(b) && (b.velocity != Vec3::Zero() || b.angular_velocity != Vec3::Zero()))
-    arg_error(L, 1, "a static body cannot move: velocity and angular_velocity must be zero");
-}
-
-// Runs an engine constructor, turning its std::invalid_argument into an argument error (the
-// fields were checked before, so this is a second line of defence).
-template <class Make>
-Body make_or_raise(lua_State* L, Make&& make) {
-  std::string message;
-  try {
-    return make();
-  } catch (const std::invalid_argument& e) {
-    message = e.what();
-  }
-  arg_error(L, 1, "%s", message.c_str());
+// The new body b, pushed, then the settable fields of the table at 1 set on it.
+int push_constructed(lua_State* L, const Body& b) {
+  push_new_body(L, b);
+  set_from_table(L, body_type, lua_gettop(L), 1);
+  return 1;
 }
 
 int body_call(lua_State* L) {
   lua_remove(L, 1);  // the body table itself
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  static const char* const fields[] = {"mass", "inertia", "position", "orientation", "velocity",
-                                       "angular_velocity", "static", "restitution", "friction",
-                                       nullptr};
-  check_fields(L, 1, fields);
+  static const char* const own[] = {"mass", "inertia", "static", nullptr};
+  check_fields(L, 1, constructor_fields(L, body_type, own));
   double mass = 0.0;
-  const bool is_static = read_mass(L, mass);
-  Body b;
-  if (is_static) {
-    if (get_field(L, 1, "inertia") != LUA_TNIL)
-      arg_error(L, 1, "field 'inertia' must be absent for a static body (its inertia is infinite)");
-    lua_pop(L, 1);
-    b = make_static_body();
-  } else {
-    if (get_field(L, 1, "inertia") == LUA_TNIL) arg_error(L, 1, "field 'inertia' is required");
-    const Mat3* inertia = test_mat3(L, -1);
-    if (inertia == nullptr)
-      arg_error(L, 1, "field 'inertia' must be a mat3, got %s", value_type_name(L, -1));
-    const Mat3 tensor = *inertia;
-    lua_pop(L, 1);
-    const std::string problem = inertia_tensor_problem(tensor);
-    if (!problem.empty())
-      arg_error(L, 1,
-                "field 'inertia' is not a valid inertia tensor (symmetric, positive definite, "
-                "A + B >= C): %s",
-                problem.c_str());
-    b = make_or_raise(L, [&] { return make_body(mass, tensor); });
+  if (read_mass(L, mass)) {
+    refuse_static_inertia(L);
+    return push_constructed(L, make_static_body());
   }
-  read_state(L, b);
-  read_material_fields(L, 1, b.restitution, b.friction);
-  push_new_body(L, b);
-  return 1;
+  if (get_field(L, 1, "inertia") == LUA_TNIL) arg_error(L, 1, "field 'inertia' is required");
+  const Mat3* inertia = test_mat3(L, -1);
+  if (inertia == nullptr) Where::field(1, "inertia").type_error(L, -1, "mat3");
+  const Mat3 tensor = *inertia;
+  lua_pop(L, 1);
+  const std::string problem = inertia_tensor_problem(tensor);
+  if (!problem.empty())
+    arg_error(L, 1,
+              "field 'inertia' is not a valid inertia tensor (symmetric, positive definite, "
+              "A + B >= C): %s",
+              problem.c_str());
+  return push_constructed(L, protect(L, 1, [&] { return make_body(mass, tensor); }));
 }
 
 // Refuses the tensor of a dynamic body.sphere / body.box, naming the fields, when it overflows
@@ -168,16 +245,13 @@ void check_shape_inertia(lua_State* L, ShapeKind kind, double mass, double radiu
 int shaped_body(lua_State* L, ShapeKind kind) {
   if (!lua_istable(L, 1)) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  static const char* const sphere_fields[] = {"mass", "radius", "position", "orientation",
-                                              "velocity", "angular_velocity", "static",
-                                              "restitution", "friction", nullptr};
-  static const char* const box_fields[] = {"mass", "size", "position", "orientation",
-                                           "velocity", "angular_velocity", "static",
-                                           "restitution", "friction", nullptr};
-  check_fields(L, 1, kind == ShapeKind::sphere ? sphere_fields : box_fields);
+  static const char* const sphere_fields[] = {"mass", "static", "radius", nullptr};
+  static const char* const box_fields[] = {"mass", "static", "size", nullptr};
+  const bool sphere = kind == ShapeKind::sphere;
+  check_fields(L, 1, constructor_fields(L, body_type, sphere ? sphere_fields : box_fields));
   double radius = 0.0;
   Vec3 size = Vec3::Zero();
-  if (kind == ShapeKind::sphere) {
+  if (sphere) {
     radius = field_positive(L, 1, "radius", 0.0, true);
   } else {
     size = field_vec3(L, 1, "size", Vec3::Zero(), true);
@@ -187,134 +261,23 @@ int shaped_body(lua_State* L, ShapeKind kind) {
                 format_number(size.z()).c_str());
   }
   double mass = 0.0;
-  Body b;
   if (read_mass(L, mass)) {
-    b = make_static_body();
+    Body b = make_static_body();
     b.shape.kind = kind;
     b.shape.radius = radius;
     b.shape.half_extents = 0.5 * size;
-  } else {
-    check_shape_inertia(L, kind, mass, radius, size);
-    b = make_or_raise(L, [&] {
-      return kind == ShapeKind::sphere ? make_sphere_body(mass, radius) : make_box_body(mass, size);
-    });
+    return push_constructed(L, b);
   }
-  read_state(L, b);
-  read_material_fields(L, 1, b.restitution, b.friction);
-  push_new_body(L, b);
-  return 1;
+  check_shape_inertia(L, kind, mass, radius, size);
+  return push_constructed(L, protect(L, 1, [&] {
+    return sphere ? make_sphere_body(mass, radius) : make_box_body(mass, size);
+  }));
 }
 
 int body_sphere(lua_State* L) { return shaped_body(L, ShapeKind::sphere); }
 int body_box(lua_State* L) { return shaped_body(L, ShapeKind::box); }
 
-// ---- fields ----------------------------------------------------------------------------------
-
-// Pushes the field `key` of b; false when there is no such field.
-bool push_field(lua_State* L, const Body& b, const char* key) {
-  const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
-  if (is("position")) push_vec3(L, b.position);
-  else if (is("velocity")) push_vec3(L, b.velocity);
-  else if (is("angular_velocity")) push_vec3(L, b.angular_velocity);
-  else if (is("orientation")) push_quat(L, b.orientation);
-  else if (is("mass")) lua_pushnumber(L, b.mass);
-  else if (is("inv_mass")) lua_pushnumber(L, b.inverse_mass);
-  else if (is("inertia")) push_mat3(L, b.inertia);
-  else if (is("inv_inertia")) push_mat3(L, b.inverse_inertia);
-  else if (is("static")) lua_pushboolean(L, is_static(b));
-  else if (is("shape")) lua_pushstring(L, shape_name(b.shape.kind));
-  else if (is("restitution")) lua_pushnumber(L, b.restitution);
-  else if (is("friction")) lua_pushnumber(L, b.friction);
-  else if (is("radius")) {
-    if (b.shape.kind == ShapeKind::sphere) lua_pushnumber(L, b.shape.radius);
-    else lua_pushnil(L);
-  } else if (is("size")) {
-    if (b.shape.kind == ShapeKind::box) push_vec3(L, 2.0 * b.shape.half_extents);
-    else lua_pushnil(L);
-  } else {
-    return false;
-  }
-  return true;
-}
-
-constexpr const char* field_list =
-    "position, orientation, velocity, angular_velocity, restitution, friction (read/write); "
-    "mass, inv_mass, inertia, inv_inertia, static, shape, radius, size (read-only)";
-
-int body_index(lua_State* L) {
-  const BodyHandle& handle = check_body_handle(L, 1);
-  if (lua_type(L, 2) == LUA_TSTRING) {
-    if (push_field(L, handle.body(), lua_tostring(L, 2))) return 1;
-    lua_pushvalue(L, 2);
-    if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
-  }
-  field_error(L, "body", push_key_name(L, 2), "no such field; the fields are %s, the methods are "
-              "in help(\"body\")", field_list);
-}
-
-// The quat being assigned to b.orientation, normalised.
-Quat new_orientation(lua_State* L) {
-  const Quat* q = test_quat(L, 3);
-  if (q == nullptr) field_type_error(L, "body", "orientation", "quat", 3);
-  if (!is_finite(*q))
-    field_error(L, "body", "orientation", "must be finite, got %s", luaL_tolstring(L, 3, nullptr));
-  if (is_zero(*q)) field_error(L, "body", "orientation", "the zero quaternion is not a rotation");
-  return unit(*q);
-}
-
-// b.restitution = e or b.friction = μ, the value at index 3 (engine/plane.hpp's rules).
-void set_material(lua_State* L, Body& b, bool restitution) {
-  const char* key = restitution ? "restitution" : "friction";
-  if (lua_type(L, 3) != LUA_TNUMBER) field_type_error(L, "body", key, "number", 3);
-  const double x = lua_tonumber(L, 3);
-  const std::string problem = restitution ? material_problem(x, b.friction)
-                                          : material_problem(b.restitution, x);
-  if (!problem.empty()) {
-    // "friction must be finite and >= 0, got -1": the field's name is in the form already.
-    const std::size_t length = std::strlen(key);
-    const std::size_t skip = problem.compare(0, length, key) == 0 ? length + 1 : 0;
-    field_error(L, "body", key, "%s", problem.c_str() + skip);
-  }
-  (restitution ? b.restitution : b.friction) = x;
-}
-
-int body_newindex(lua_State* L) {
-  const BodyHandle& handle = check_body_handle(L, 1);
-  const char* key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "";
-  const auto is = [key](const char* name) { return std::strcmp(key, name) == 0; };
-  const bool material = is("restitution") || is("friction");
-  const bool state = is("position") || is("orientation") || is("velocity") ||
-                     is("angular_velocity") || material;
-  if (!state) {
-    if (push_field(L, handle.body(), key))
-      field_error(L, "body", key, "read-only: mass properties and shape are fixed when the body "
-                  "is made");
-    field_error(L, "body", push_key_name(L, 2), "no such field; the settable fields are position, "
-                "orientation, velocity, angular_velocity, restitution, friction");
-  }
-  if (handle.store->stepping())
-    field_error(L, "body", key, "the world is stepping: it cannot be set until world:step returns; "
-                "force callbacks may only apply forces");
-  if (is("orientation")) {
-    const Quat q = new_orientation(L);
-    handle.body().orientation = q;
-    return 0;
-  }
-  if (material) {
-    set_material(L, handle.body(), is("restitution"));
-    return 0;
-  }
-  const Vec3 v = check_field_vec3(L, "body", key, 3);
-  Body& b = handle.body();
-  if (is("position")) {
-    b.position = v;
-    return 0;
-  }
-  if (is_static(b) && v != Vec3::Zero())
-    field_error(L, "body", key, "a static body's %s must stay zero: it never moves", key);
-  (is("velocity") ? b.velocity : b.angular_velocity) = v;
-  return 0;
-}
+// ---- metamethods -----------------------------------------------------------------------------
 
 int body_tostring(lua_State* L) {
   const Body& b = check_body(L, 1);
@@ -327,12 +290,17 @@ int body_tostring(lua_State* L) {
   return 1;
 }
 
+// A body's __gc, run by the collector or by hand: refused while its world steps (the
+// collector never finalises such a body: its world's list holds it); afterwards the value is
+// no body ("the body was finalised"), so a second call does nothing.
 int body_gc(lua_State* L) {
-  auto* box = static_cast<BodyBox*>(lua_touserdata(L, 1));
-  if (box != nullptr && box->tag == body_tag) {
-    box->value.~BodyHandle();
-    box->tag = 0;  // a resurrected (finalised) body is no longer a body
-  }
+  BodyHandle* handle = test_body(L, 1);
+  if (handle == nullptr) return 0;
+  if (handle->store->stepping())
+    arg_error(L, 1, "the body's world is stepping: it cannot be finalised until world:step "
+                    "returns");
+  handle->~BodyHandle();
+  static_cast<BodyBox*>(lua_touserdata(L, 1))->tag = 0;
   return 0;
 }
 
@@ -476,16 +444,10 @@ const Entry methods[] = {
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry metamethods[] = {
-    {"__newindex", body_newindex, "body.__newindex", "b.position = v",
-     "Sets position, orientation (normalised), velocity, angular_velocity, restitution or\n"
-     "friction."},
     {"__tostring", body_tostring, "body.__tostring", "tostring(b)",
      "Short form: body(sphere, m=1, pos=(0, 1, 0))."},
-    {"__gc", body_gc, "body.__gc", "", "Releases the body's storage."},
-    {nullptr, nullptr, nullptr, nullptr, nullptr}};
-
-const Entry index_entry[] = {
-    {"__index", body_index, "body.__index", "b.position, b:method()", "Fields and methods."},
+    {"__gc", body_gc, "body.__gc", "",
+     "Releases the body's storage (refused while its world steps)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry constructors[] = {
@@ -507,55 +469,53 @@ const Entry call_entry[] = {
     {"__call", body_call, "body",
      "body{mass =, inertia =, position =, orientation =, velocity =, angular_velocity =, "
      "static =, restitution =, friction =} -> body",
-     "A rigid body. mass (kg) and inertia (mat3, kg m², body frame about the COM: symmetric,\n"
-     "positive definite, principal moments with A + B >= C) are required; position (m, of the\n"
-     "COM), orientation (quat, normalised), velocity (m/s) and angular_velocity (rad/s, world)\n"
-     "default to zero / identity. mass = math.huge or static = true makes an immovable body\n"
-     "(inverse mass and inverse inertia 0; impulses and forces do nothing to it).\n"
-     "restitution e in [0, 1] (default 0) and friction μ >= 0 (default 0.6) are the surface\n"
-     "material for contacts; a contact uses e = max(ea, eb) and μ = √(μa μb) (Box2D's rule).\n"
-     "Shapes: body.sphere{...}, body.box{...}.\n"
-     "Fields: position, orientation, velocity, angular_velocity, restitution, friction\n"
-     "(read/write); mass, inv_mass, inertia, inv_inertia, static, shape (\"none\", \"sphere\",\n"
-     "\"box\"), radius (spheres), size (boxes) (read-only).\n"
-     "Methods: world_inertia, inv_world_inertia, apply_force, apply_torque, apply_impulse,\n"
-     "apply_angular_impulse, point_velocity, to_world, to_local, linear_momentum,\n"
-     "angular_momentum, kinetic_energy."},
+     "A rigid body. A moving body needs mass (kg) and inertia (mat3, kg m², body frame about\n"
+     "the COM: symmetric, positive definite, principal moments with A + B >= C); position,\n"
+     "orientation, velocity and angular_velocity default to zero / identity. static = true or\n"
+     "mass = math.huge makes an immovable body, which takes no inertia (its inverse mass and\n"
+     "inverse inertia are 0; impulses and forces do nothing to it).\n"
+     "restitution and friction are the surface material for contacts (Box2D's rule).\n"
+     "Shapes: body.sphere{...}, body.box{...}. The option table sets the settable fields."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace
 
+const TypeSpec body_type = {"body", &body_metatable_key, check_body_settable};
+
 void read_material_fields(lua_State* L, int arg, double& restitution, double& friction) {
-  restitution = field_finite(L, arg, "restitution", default_restitution, false);
-  if (!(restitution >= 0.0 && restitution <= 1.0))
-    arg_error(L, arg, "field 'restitution' must be in [0, 1], got %s",
-              format_number(restitution).c_str());
-  friction = field_finite(L, arg, "friction", default_friction, false);
-  if (!(friction >= 0.0))
-    arg_error(L, arg, "field 'friction' must be >= 0, got %s", format_number(friction).c_str());
+  restitution = default_restitution;
+  friction = default_friction;
+  if (get_field(L, arg, "restitution") != LUA_TNIL)
+    restitution = check_restitution(L, -1, Where::field(arg, "restitution"));
+  if (get_field(L, arg, "friction") != LUA_TNIL)
+    friction = check_friction(L, -1, Where::field(arg, "friction"));
+  lua_pop(L, 2);
 }
 
 BodyHandle* test_body(lua_State* L, int index) { return test_tagged<BodyHandle>(L, index, body_tag); }
 
+BodyHandle& check_body_handle(lua_State* L, int index, const Where& where) {
+  BodyHandle* handle = test_body(L, index);
+  if (handle != nullptr) return *handle;
+  // A body whose __gc has run (used from a finaliser) has its tag cleared but its size and
+  // metatable; anything else in a body's metatable (debug.setmetatable) is named by type.
+  const auto* box = static_cast<const BodyBox*>(lua_touserdata(L, index));
+  if (box != nullptr && lua_rawlen(L, index) == sizeof(BodyBox) && box->tag == 0 &&
+      has_metatable(L, index, &body_metatable_key))
+    where.error(L, "must be a body, got a finalised one (its __gc has run; it is used from a "
+                   "finaliser)");
+  where.type_error(L, index, "body");
+}
+
 BodyHandle& check_body_handle(lua_State* L, int arg) {
-  BodyHandle* handle = test_body(L, arg);
-  if (handle == nullptr) {
-    // A body whose __gc has run (used from a finaliser) has its tag cleared but its size and
-    // metatable; anything else in a body's metatable (debug.setmetatable) is named by type.
-    const auto* box = static_cast<const BodyBox*>(lua_touserdata(L, arg));
-    if (box != nullptr && lua_rawlen(L, arg) == sizeof(BodyBox) && box->tag == 0 &&
-        has_metatable(L, arg, &body_metatable_key))
-      arg_error(L, arg, "the body was garbage-collected (it is used from a finaliser)");
-    type_error(L, arg, "body");
-  }
-  return *handle;
+  return check_body_handle(L, arg, Where::argument(arg));
 }
 
 BodyHandle& push_new_body(lua_State* L, const Body& b) {
   BodyHandle handle{std::make_shared<BodyStore>(), 0};
   handle.id = handle.store->insert(b);
   void* memory = lua_newuserdatauv(L, sizeof(BodyBox), 0);
-  auto* box = new (memory) BodyBox{body_tag, std::move(handle)};
+  auto* box = new (memory) BodyBox{body_tag, std::move(handle)};  // moving cannot throw
   lua_rawgetp(L, LUA_REGISTRYINDEX, &body_metatable_key);
   lua_setmetatable(L, -2);
   return box->value;
@@ -566,22 +526,18 @@ void check_not_stepping(lua_State* L, int arg, const BodyHandle& handle, const c
 }
 
 void open_body(lua_State* L, int lib) {
-  new_metatable(L, "body", &body_metatable_key);
-  register_entries(L, -1, metamethods);
-  lua_newtable(L);  // methods, the upvalue of __index
-  register_entries(L, -1, methods);
-  register_entries(L, -2, index_entry, 1);
-  lua_pop(L, 1);
-
   lua_newtable(L);  // the callable `body` table
-  register_entries(L, -1, constructors);
-  register_entries(L, -1, methods);  // body.kinetic_energy(b) works as b:kinetic_energy()
+  const int table = lua_gettop(L);
+  new_type(L, body_type, table, metamethods);
+  add_properties(L, body_type, properties);
+  add_methods(L, body_type, methods);  // body.kinetic_energy(b) works as b:kinetic_energy()
+  register_entries(L, table, constructors);
   lua_newtable(L);
   register_entries(L, -1, call_entry);
   lua_pushliteral(L, "body");
   lua_setfield(L, -2, "__metatable");
-  lua_setmetatable(L, -2);
-  register_topic(L, -1, "body", call_entry[0].doc);
+  lua_setmetatable(L, table);
+  register_topic(L, table, "body", call_entry[0].doc);
   lua_setfield(L, lib, "body");
 }
 

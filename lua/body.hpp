@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "engine/world.hpp"
+#include "lua/binding.hpp"
 
 namespace rigidlab::lua {
 
@@ -23,11 +24,18 @@ struct BodyHandle {
   Body& body() const { return store->get(id); }
 };
 
+// The body type: add_methods / add_properties extend it (lua/binding.hpp section 5).
+extern const TypeSpec body_type;
+
 // The handle of the body at `index`, or nullptr when it is not a body.
 BodyHandle* test_body(lua_State* L, int index);
-// The handle, or a "body expected, got <type>" argument error.
+// The handle, or a "body expected, got <type>" argument error ("the body was finalised" for
+// one whose __gc has run); the second form reports in the form of `where`.
 BodyHandle& check_body_handle(lua_State* L, int arg);
-// The body itself. The reference is valid until a body is added to or removed from its store.
+BodyHandle& check_body_handle(lua_State* L, int index, const Where& where);
+// The body itself. The reference is valid until a body is added to or removed from its store,
+// which Lua code can do: take it after reading every argument and option field, and do not
+// keep it across a Lua allocation (a finaliser may run there) or a call into Lua.
 inline Body& check_body(lua_State* L, int arg) { return check_body_handle(L, arg).body(); }
 // A new Lua body holding a copy of b in a store of its own.
 BodyHandle& push_new_body(lua_State* L, const Body& b);

@@ -4,9 +4,8 @@
 // Sources: 001_* "System Of Particles", "Collisions", Appendices C and D; 002_* "Inverse Mass
 // Matrix"; 003_* "Collision Response".
 #include <cmath>
+#include <cstring>
 #include <limits>
-#include <stdexcept>
-#include <string>
 
 #include "engine/collision.hpp"
 #include "lua/binding.hpp"
@@ -31,20 +30,8 @@ double check_inverse_mass(lua_State* L, int arg) {
   return inverse;
 }
 
-// Runs an engine call and returns the message of the std::invalid_argument it threw, or "";
-// the caller raises the Lua error after the catch (exceptions never cross Lua, STYLE.md 4).
-template <class F>
-std::string engine_error(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
-
-bool starts_with(const std::string& text, const char* prefix) {
-  return text.rfind(prefix, 0) == 0;
+bool starts_with(const char* text, const char* prefix) {
+  return std::strncmp(text, prefix, std::strlen(prefix)) == 0;
 }
 
 double check_restitution(lua_State* L, int arg) {
@@ -63,12 +50,11 @@ int collide_impulse_1d(lua_State* L) {
   const double restitution = check_restitution(L, 5);
   if (inverse_mass_a == 0.0 && inverse_mass_b == 0.0)
     arg_error(L, 3, "both masses are math.huge: two immovable bodies cannot collide");
-  Impulse1D r;
   // Overflow of J or a velocity: blame the larger of the two speeds.
   const int fast = std::abs(velocity_a) >= std::abs(velocity_b) ? 2 : 4;
-  const std::string error = engine_error(
-      [&] { r = impulse_1d(inverse_mass_a, velocity_a, inverse_mass_b, velocity_b, restitution); });
-  if (!error.empty()) arg_error(L, fast, "%s", error.c_str());
+  const Impulse1D r = protect(L, fast, [&] {
+    return impulse_1d(inverse_mass_a, velocity_a, inverse_mass_b, velocity_b, restitution);
+  });
   lua_pushnumber(L, r.impulse);
   lua_pushnumber(L, r.velocity_a);
   lua_pushnumber(L, r.velocity_b);
@@ -95,32 +81,32 @@ Vec3 check_point(lua_State* L, int arg, const Vec3& point, const char* what) {
   return point;
 }
 
+// The option table is read first, then the bodies are taken: its metamethods may add bodies
+// to their world (moving its storage) or remove one.
 int collide_resolve(lua_State* L) {
   check_no_extra_args(L, 3);
-  Body *a, *b;
-  check_body_pair(L, a, b);
-  // Changing velocities in the middle of an RK4 step would corrupt it.
-  check_not_stepping(L, 1, check_body_handle(L, 1), "apply collision impulses");
-  check_not_stepping(L, 2, check_body_handle(L, 2), "apply collision impulses");
+  check_body_handle(L, 1);
+  check_body_handle(L, 2);
   if (lua_type(L, 3) != LUA_TTABLE) type_error(L, 3, "table");
   static const char* const fields[] = {"point", "normal", "restitution", "friction", nullptr};
   check_fields(L, 3, fields);
   Contact contact;
-  contact.point = check_point(L, 3, field_vec3(L, 3, "point", Vec3::Zero(), true), "field 'point'");
+  contact.point = field_vec3(L, 3, "point", Vec3::Zero(), true);
   contact.normal = check_normal(L, 3, field_vec3(L, 3, "normal", Vec3::Zero(), true),
                                 "field 'normal'");
   contact.restitution = field_finite(L, 3, "restitution", 0.0, false);
   if (!(contact.restitution >= 0.0 && contact.restitution <= 1.0))
     arg_error(L, 3, "field 'restitution' must be in [0, 1], got %s",
               format_number(contact.restitution).c_str());
-  contact.friction = field_finite(L, 3, "friction", 0.0, false);
-  if (!(contact.friction >= 0.0))
-    arg_error(L, 3, "field 'friction' must be >= 0, got %s",
-              format_number(contact.friction).c_str());
-  ContactImpulse r;
+  contact.friction = field_nonnegative(L, 3, "friction", 0.0, false);
+  // No Lua code runs from here until the impulses are applied.
+  Body *a, *b;
+  check_body_pair(L, a, b);
+  // Changing velocities in the middle of an RK4 step would corrupt it.
+  check_not_stepping(L, 1, check_body_handle(L, 1), "apply collision impulses");
+  check_not_stepping(L, 2, check_body_handle(L, 2), "apply collision impulses");
   // Left to the engine: a point so far away that the impulse overflows (bodies unchanged).
-  const std::string error = engine_error([&] { r = resolve_contact(*a, *b, contact); });
-  if (!error.empty()) arg_error(L, 3, "%s", error.c_str());
+  const ContactImpulse r = protect(L, 3, [&] { return resolve_contact(*a, *b, contact); });
   lua_pushnumber(L, r.normal_impulse);
   push_vec3(L, r.friction_impulse);
   return 2;
@@ -150,10 +136,10 @@ int collide_effective_mass(lua_State* L) {
   const Vec3 point = check_point(L, 3, check_vec3(L, 3), "point");
   const Vec3 normal = check_normal(L, 4, check_vec3(L, 4), "normal");
   double m = 0.0;
-  const std::string error = engine_error([&] { m = effective_mass(*a, *b, point, normal); });
-  if (!error.empty())
-    arg_error(L, starts_with(error, "normal") ? 4 : starts_with(error, "point") ? 3 : 2, "%s",
-              error.c_str());
+  if (const Failure failure = try_call([&] { m = effective_mass(*a, *b, point, normal); })) {
+    const char* what = failure.what();
+    failure.raise(L, starts_with(what, "normal") ? 4 : starts_with(what, "point") ? 3 : 2);
+  }
   lua_pushnumber(L, m);
   return 1;
 }

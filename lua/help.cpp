@@ -3,6 +3,7 @@
 // help("vec3:cross")); help() lists the topics. The texts are the `signature` and `doc` of
 // each binding's Entry table, so the help shown is the help written beside the code.
 #include <algorithm>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,62 @@ void resolve_name(lua_State* L, const std::string& name) {
   }
 }
 
+// `text` broken at spaces into lines of at most 92 columns (counting UTF-8 characters, so
+// "Δt" is two bytes but one column), the first starting with `first`, the others with `next`.
+std::string wrap(const std::string& text, const char* first, const char* next) {
+  constexpr std::size_t width = 92;
+  std::string result = first;
+  std::size_t columns = result.size(), start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    std::size_t word_columns = 0;
+    for (std::size_t i = start; i < end; ++i)
+      word_columns += (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80;
+    if (columns + 1 + word_columns > width && columns > std::strlen(next)) {
+      result += std::string("\n") + next;
+      columns = std::strlen(next);
+    } else if (start > 0) {
+      result += ' ';
+      ++columns;
+    }
+    result.append(text, start, end - start);
+    columns += word_columns;
+    start = end + 1;
+  }
+  return result;
+}
+
+// The fields of a type (its properties, lua/binding.hpp section 5), in the order they were
+// added: "  name (read-only): doc".
+std::string list_properties(lua_State* L, int index) {
+  std::string text;
+  for (const Property* p : topic_properties(L, index)) {
+    const std::string line =
+        std::string(p->name) + (p->set == nullptr ? " (read-only): " : ": ") + p->doc;
+    text += wrap(line, "  ", "    ") + "\n";
+  }
+  return text.empty() ? text : "Fields (read/write unless marked):\n" + text + "Methods:\n";
+}
+
+// "world.gravity": the help of a property, pushed as a string, or false when `name` is no
+// type's property.
+bool push_property_help(lua_State* L, const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  if (dot == std::string::npos) return false;
+  resolve_name(L, name.substr(0, dot));
+  const std::vector<const Property*> properties = topic_properties(L, -1);
+  lua_pop(L, 1);
+  for (const Property* p : properties) {
+    if (name.compare(dot + 1, std::string::npos, p->name) != 0) continue;
+    std::string text = name + (p->set == nullptr ? " (read-only)" : "") + "\n  " + p->doc;
+    if (p->fixed != nullptr) text += std::string("\n  Read-only: ") + p->fixed + ".";
+    lua_pushlstring(L, text.data(), text.size());
+    return true;
+  }
+  return false;
+}
+
 const char* const overview =
     "rigidlab: rigid-body dynamics in Lua. help(x) documents a function, type or module,\n"
     "given the value or its name: help(vec3), help(\"inertia.solid_box\"), help(vec3.cross).\n"
@@ -96,8 +153,14 @@ int help(lua_State* L) {
     return 0;
   }
   if (lua_type(L, 1) == LUA_TSTRING) {
-    const std::string name = lua_tostring(L, 1);
+    std::size_t length = 0;
+    const char* chars = check_name(L, 1, Where::argument(1, "the topic name"), &length);
+    const std::string name(chars, length);
     resolve_name(L, name);
+    if (lua_isnil(L, -1) && push_property_help(L, name)) {
+      print_text(L, lua_tostring(L, -1));
+      return 0;
+    }
     if (lua_isnil(L, -1))
       arg_error(L, 1, "no topic '%s' (help() lists the topics)", name.c_str());
     lua_replace(L, 1);
@@ -113,8 +176,11 @@ int help(lua_State* L) {
   std::string text;
   if (entry != nullptr) text = describe(*entry);
   if (lua_type(L, 1) == LUA_TTABLE) {
+    const std::string fields = list_properties(L, 1);
+    if (!fields.empty()) text += (text.empty() ? "" : "\n") + fields;
     const std::string functions = list_functions(L, 1);
-    if (!functions.empty()) text += (text.empty() ? "" : "\n") + functions;
+    if (!functions.empty())
+      text += (text.empty() || text.back() == '\n' ? "" : "\n") + functions;
     if (!text.empty() && text.back() == '\n') text.pop_back();
   }
   if (text.empty())

@@ -16,18 +16,6 @@
 namespace rigidlab::lua {
 namespace {
 
-// Runs an engine call; its std::invalid_argument becomes a Lua error raised after the catch.
-template <class F>
-auto engine_call(lua_State* L, F&& f) -> decltype(f()) {
-  std::string message;
-  try {
-    return f();
-  } catch (const std::invalid_argument& e) {
-    message = e.what();
-  }
-  function_error(L, "%s", message.c_str());
-}
-
 // Results are pushed only when finite: huge inputs can overflow. The overflow is blamed on
 // argument `arg`, the one that made the result too large (a shape's size: see largest_arg).
 void push_result(lua_State* L, const Mat3& m, int arg) { push_finite(L, m, arg); }
@@ -69,7 +57,7 @@ int mass_radius(lua_State* L) {
   check_no_extra_args(L, 2);
   const double m = check_positive(L, 1, "mass");
   const double r = check_positive(L, 2, "radius");
-  push_result(L, engine_call(L, [&] { return shape(m, r); }), 2);
+  push_result(L, protect(L, [&] { return shape(m, r); }), 2);
   return 1;
 }
 
@@ -81,7 +69,7 @@ int mass_radius_height(lua_State* L) {
   const double r = check_positive(L, 2, "radius");
   const double h = zero_height_allowed ? check_nonnegative(L, 3, "height")
                                        : check_positive(L, 3, "height");
-  push_result(L, engine_call(L, [&] { return shape(m, r, h); }), largest_arg(L, 2, 3));
+  push_result(L, protect(L, [&] { return shape(m, r, h); }), largest_arg(L, 2, 3));
   return 1;
 }
 
@@ -103,7 +91,7 @@ int solid_box(lua_State* L) {
                 check_positive(L, 4, "depth"));
     size_arg = largest_arg(L, 2, 4);
   }
-  push_result(L, engine_call(L, [&] { return inertia_solid_box(m, size); }), size_arg);
+  push_result(L, protect(L, [&] { return inertia_solid_box(m, size); }), size_arg);
   return 1;
 }
 
@@ -113,7 +101,7 @@ int solid_ellipsoid(lua_State* L) {
   const double a = check_positive(L, 2, "semi-axis a");
   const double b = check_positive(L, 3, "semi-axis b");
   const double c = check_positive(L, 4, "semi-axis c");
-  push_result(L, engine_call(L, [&] { return inertia_solid_ellipsoid(m, a, b, c); }),
+  push_result(L, protect(L, [&] { return inertia_solid_ellipsoid(m, a, b, c); }),
               largest_arg(L, 2, 4));
   return 1;
 }
@@ -134,17 +122,9 @@ void push_entry_table(lua_State* L, int arg, int entry, const char* const* allow
                       const char* shape) {
   if (lua_rawgeti(L, arg, entry) != LUA_TTABLE)
     arg_error(L, arg, "entry %d must be a table %s, got %s", entry, shape, value_type_name(L, -1));
-  lua_pushnil(L);
-  while (lua_next(L, -2) != 0) {
-    lua_pop(L, 1);
-    bool known = false;
-    if (lua_type(L, -1) == LUA_TSTRING)
-      for (const char* const* a = allowed; *a != nullptr && !known; ++a)
-        known = std::string(*a) == lua_tostring(L, -1);
-    if (!known)
-      arg_error(L, arg, "entry %d: unknown field '%s' (the fields are %s)", entry,
-                luaL_tolstring(L, -1, nullptr), shape);
-  }
+  const int table = lua_gettop(L);
+  check_fields(L, table, allowed, Where::argument(arg, lua_pushfstring(L, "entry %d:", entry)));
+  lua_pop(L, 1);
 }
 
 // Field 'mass' of the entry table on top of the stack: a finite number > 0.
@@ -173,6 +153,9 @@ T entry_value(lua_State* L, int arg, int entry, const char* name, const char* ty
     arg_error(L, arg, "entry %d: field '%s' must be a %s, got %s", entry, name, type_name, got);
   }
   const T result = *value;
+  if (!is_finite(result))  // the engine would refuse it without naming the entry
+    arg_error(L, arg, "entry %d: field '%s' must be finite, got %s", entry, name,
+              push_shown_value(L, -1));
   lua_pop(L, 1);
   return result;
 }
@@ -190,7 +173,7 @@ int points(lua_State* L) {
     list.push_back({m, entry_value<Vec3, test_vec3>(L, 1, i, "pos", "vec3")});
     lua_pop(L, 1);
   }
-  push_mass_properties(L, engine_call(L, [&] { return inertia_points(list); }));
+  push_mass_properties(L, protect(L, [&] { return inertia_points(list); }));
   return 3;
 }
 
@@ -214,7 +197,7 @@ int composite(lua_State* L) {
     parts.push_back(part);
     lua_pop(L, 1);
   }
-  push_mass_properties(L, engine_call(L, [&] { return composite_inertia(parts); }));
+  push_mass_properties(L, protect(L, [&] { return composite_inertia(parts); }));
   return 3;
 }
 
@@ -224,7 +207,7 @@ int point(lua_State* L) {
   check_no_extra_args(L, 2);
   const double m = check_positive(L, 1, "mass");
   const Vec3& r = check_vec3(L, 2);
-  push_result(L, engine_call(L, [&] { return inertia_point(m, r); }), 2);
+  push_result(L, protect(L, [&] { return inertia_point(m, r); }), 2);
   return 1;
 }
 
@@ -242,7 +225,7 @@ int rotate(lua_State* L) {
   const Mat3& I = check_tensor(L, 1);
   if (const Quat* q = test_quat(L, 2)) {
     if (is_zero(*q)) arg_error(L, 2, "the rotation quaternion must be non-zero");
-    push_result(L, engine_call(L, [&] { return rotate_inertia(I, *q); }), 1);
+    push_result(L, protect(L, [&] { return rotate_inertia(I, *q); }), 1);
     return 1;
   }
   const Mat3* R = test_mat3(L, 2);
@@ -260,7 +243,7 @@ int about_axis(lua_State* L) {
   if (!is_finite(n))
     arg_error(L, 2, "the axis must be finite, got %s", luaL_tolstring(L, 2, nullptr));
   if (is_zero(n)) arg_error(L, 2, "the axis must be a non-zero vector");
-  push_result(L, engine_call(L, [&] { return rigidlab::about_axis(I, n); }), 1);
+  push_result(L, protect(L, [&] { return rigidlab::about_axis(I, n); }), 1);
   return 1;
 }
 
@@ -313,13 +296,11 @@ std::vector<MeshTriangle> check_triangles(lua_State* L, int arg, int vertex_coun
       arg_error(L, arg, "entry %d must be a table of 3 vertex indices {i, j, k}, got %s", t,
                 is_table ? "a table of another shape" : value_type_name(L, -1));
     for (int k = 0; k < 3; ++k) {
-      // Like luaL_checkinteger, a float with an integral value (2.0) is accepted.
-      int is_integer = 0;
-      const lua_Integer index =
-          lua_rawgeti(L, -1, k + 1) == LUA_TNUMBER ? lua_tointegerx(L, -1, &is_integer) : 0;
-      if (!is_integer)
+      lua_Integer index = 0;
+      lua_rawgeti(L, -1, k + 1);
+      if (!to_integer(L, -1, index))  // 2.0 counts as 2, as everywhere
         arg_error(L, arg, "entry %d: vertex index %d must be an integer, got %s", t, k + 1,
-                  lua_type(L, -1) == LUA_TNUMBER ? luaL_tolstring(L, -1, nullptr)
+                  lua_type(L, -1) == LUA_TNUMBER ? push_shown_value(L, -1)
                                                  : value_type_name(L, -1));
       if (index < 1 || index > vertex_count)
         arg_error(L, arg, "entry %d: vertex index %I is out of range (the vertices are 1 to %d)",
@@ -341,7 +322,7 @@ int mesh(lua_State* L) {
   const std::string problem = mesh_problem(vertices, triangles);
   if (!problem.empty()) arg_error(L, 2, "%s", problem.c_str());
   const MeshMassProperties p =
-      engine_call(L, [&] { return inertia_mesh(vertices, triangles, density); });
+      protect(L, [&] { return inertia_mesh(vertices, triangles, density); });
   push_result(L, p.mass, 1);
   push_result(L, p.com, 1);
   push_result(L, p.inertia, 1);

@@ -88,15 +88,9 @@ int mat3_skew(lua_State* L) {
   return 1;
 }
 
+// A row or column number, 1 to 3 (2.0 counts as 2, as everywhere); 0-based.
 int check_index(lua_State* L, int arg, const char* what) {
-  if (!lua_isinteger(L, arg)) {
-    if (lua_type(L, arg) != LUA_TNUMBER) type_error(L, arg, "integer");
-    arg_error(L, arg, "%s must be an integer 1, 2 or 3, got %s", what,
-              format_number(lua_tonumber(L, arg)).c_str());
-  }
-  const lua_Integer i = lua_tointeger(L, arg);
-  if (i < 1 || i > 3) arg_error(L, arg, "%s must be 1, 2 or 3, got %I", what, i);
-  return static_cast<int>(i - 1);
+  return static_cast<int>(check_integer(L, arg, Where::argument(arg, what), 1, 3)) - 1;
 }
 
 int mat3_get(lua_State* L) {
@@ -315,8 +309,7 @@ int mat3_index(lua_State* L) {
 
 int mat3_newindex(lua_State* L) {
   check_mat3(L, 1);
-  field_error(L, "mat3", push_key_name(L, 2),
-              "matrices are immutable: build a new one with mat3(...)");
+  immutable_error(L, "mat3", 2, "M = mat3(a11, a12, ..., a33) or mat3{{...}, {...}, {...}}");
 }
 
 const Entry methods[] = {

@@ -15,7 +15,7 @@ namespace {
 using ode::SecondOrderMethod;
 
 // The trajectory is kept in memory: 10⁶ steps of vec3 states are about 200 MB of Lua values.
-constexpr double max_steps = 1e6;
+constexpr lua_Integer max_steps = 1'000'000;
 
 struct Options {
   SecondOrderMethod method = SecondOrderMethod::semi_implicit;
@@ -26,22 +26,12 @@ struct Options {
 };
 
 SecondOrderMethod field_method(lua_State* L) {
-  const int type = get_field(L, 1, "method");
-  if (type == LUA_TNIL) {
-    lua_pop(L, 1);
-    return SecondOrderMethod::semi_implicit;
-  }
-  if (type != LUA_TSTRING)
-    arg_error(L, 1, "field 'method' must be a string, got %s", value_type_name(L, -1));
-  const char* name = lua_tostring(L, -1);
-  if (const auto method = ode::parse_second_order_method(name)) {
-    lua_pop(L, 1);
-    return *method;
-  }
-  const char* choices =
-      push_choice_list(L, ode::second_order_method_names,
-                       static_cast<int>(std::size(ode::second_order_method_names)));
-  arg_error(L, 1, "field 'method' must be %s, got '%s'", choices, name);
+  SecondOrderMethod method = SecondOrderMethod::semi_implicit;
+  if (get_field(L, 1, "method") != LUA_TNIL)
+    method = static_cast<SecondOrderMethod>(
+        check_option(L, -1, Where::field(1, "method"), ode::second_order_method_names));
+  lua_pop(L, 1);
+  return method;
 }
 
 // Leaves the function on the stack and returns its index.
@@ -54,13 +44,11 @@ int field_accel(lua_State* L) {
 }
 
 int field_steps(lua_State* L) {
-  const double steps = field_finite(L, 1, "steps", 0.0, true);
-  if (!(steps >= 0.0) || steps != std::floor(steps))
-    arg_error(L, 1, "field 'steps' must be an integer >= 0, got %s", format_number(steps).c_str());
-  if (steps > max_steps)
-    arg_error(L, 1, "field 'steps' must be <= %s (the whole trajectory is kept), got %s",
-              format_number(max_steps).c_str(), format_number(steps).c_str());
-  return static_cast<int>(steps);
+  if (get_field(L, 1, "steps") == LUA_TNIL) arg_error(L, 1, "field 'steps' is required");
+  // The whole trajectory is kept: at most max_steps.
+  const lua_Integer n = check_integer(L, -1, Where::field(1, "steps"), 0, max_steps);
+  lua_pop(L, 1);
+  return static_cast<int>(n);
 }
 
 // The initial state field `name`: a finite number or a vec3, pushed on the stack. With

@@ -10,19 +10,6 @@
 
 namespace rigidlab::lua {
 
-const char* push_choice_list(lua_State* L, const char* const* names, int count) {
-  luaL_Buffer list;
-  luaL_buffinit(L, &list);
-  for (int i = 0; i < count; ++i) {
-    if (i > 0) luaL_addstring(&list, i + 1 == count ? " or " : ", ");
-    luaL_addchar(&list, '\'');
-    luaL_addstring(&list, names[i]);
-    luaL_addchar(&list, '\'');
-  }
-  luaL_pushresult(&list);
-  return lua_tostring(L, -1);
-}
-
 void push_state(lua_State* L, double x) { lua_pushnumber(L, x); }
 void push_state(lua_State* L, const Vec3& x) { push_vec3(L, x); }
 void push_state(lua_State* L, const Eigen::VectorXd& x) {
@@ -103,12 +90,8 @@ using ode::FirstOrderMethod;
 
 
 FirstOrderMethod check_method(lua_State* L, int arg) {
-  if (lua_type(L, arg) != LUA_TSTRING) type_error(L, arg, "string");
-  const char* name = lua_tostring(L, arg);
-  if (const auto method = ode::parse_first_order_method(name)) return *method;
-  const char* choices = push_choice_list(
-      L, ode::first_order_method_names, static_cast<int>(std::size(ode::first_order_method_names)));
-  arg_error(L, arg, "method must be %s, got '%s'", choices, name);
+  return static_cast<FirstOrderMethod>(
+      check_option(L, arg, Where::argument(arg, "method"), ode::first_order_method_names));
 }
 
 // y given as a table: a non-empty list of finite numbers, with no other keys (a named field

@@ -11,10 +11,6 @@
 
 namespace rigidlab::lua {
 
-// "'euler', 'semi_implicit' or 'rk4'": the choices for an option error message (pushed on the
-// stack; the pointer is valid while it stays there).
-const char* push_choice_list(lua_State* L, const char* const* names, int count);
-
 void push_state(lua_State* L, double x);
 void push_state(lua_State* L, const Vec3& x);
 void push_state(lua_State* L, const Eigen::VectorXd& x);  // a new table {x[0], x[1], ...}

@@ -24,9 +24,17 @@ T.case("state fields: defaults, writes, normalisation", function()
   T.equal(b.orientation, quat.identity(), "orientation")
   b.position = vec3(1, 2, 3); b.velocity = vec3(0, 1, 0); b.angular_velocity = vec3(0, 0, 2)
   T.equal(b.position, vec3(1, 2, 3), "position written")
-  local v = b.velocity
-  v.x = 5  -- a copy: the body is unchanged
-  T.equal(b.velocity, vec3(0, 1, 0), "fields are values")
+  -- Fields are values (API.md "Conventions"): changing a component of one is an error that
+  -- says how to build the new value, never a silent change of a copy (issue 12 item 21).
+  T.fails(function() b.position.x = 5 end,
+    "bad field 'x' of vec3 (read-only: vec3 values are immutable, like numbers; build a new " ..
+    "one, e.g. v = vec3(5, v.y, v.z), or for a body b.position = vec3(5, b.position.y, " ..
+    "b.position.z))", "b.position.x = 5")
+  T.fails(function() b.orientation.w = 1 end,
+    "bad field 'w' of quat (read-only: quat values are immutable", "b.orientation.w = 1")
+  T.equal(b.position, vec3(1, 2, 3), "the body is unchanged")
+  b.position = vec3(5, b.position.y, b.position.z)  -- what the message says to write
+  T.equal(b.position, vec3(5, 2, 3), "the suggested form works")
   b.orientation = quat(2, 0, 0, 0)
   T.equal(b.orientation, quat.identity(), "orientation normalised on write")
   local c = body{mass = 1, inertia = mat3.identity(), orientation = quat(0, 0, 0, 3)}
@@ -122,24 +130,28 @@ T.case("constructor errors", function()
     "bad argument #1 to 'body' (field 'inertia' is not a valid inertia tensor (symmetric, positive "
     .. "definite, A + B >= C): principal moments -1, 1, 1 are not all > 0")
   T.fails(function() return body{mass = 1, inertia = I, colour = "red"} end,
-    "bad argument #1 to 'body' (unknown field 'colour' (fields are: mass, inertia, position, "
-    .. "orientation, velocity, angular_velocity, static, restitution, friction))")
+    "bad argument #1 to 'body' (unknown field 'colour' (fields are: mass, inertia, static, "
+    .. "position, orientation, velocity, angular_velocity, restitution, friction))")
   T.fails(function() return body{mass = 1, inertia = I, position = 3} end,
     "bad argument #1 to 'body' (field 'position' must be a vec3, got number)")
   T.fails(function() return body{mass = 1, inertia = I, orientation = vec3()} end,
     "bad argument #1 to 'body' (field 'orientation' must be a quat, got vec3)")
   T.fails(function() return body{mass = 1, inertia = I, orientation = quat(0, 0, 0, 0)} end,
-    "bad argument #1 to 'body' (field 'orientation' is the zero quaternion, which is not a rotation)")
+    "bad argument #1 to 'body' (field 'orientation' must be a rotation, got the zero quaternion)")
   T.fails(function() return body{mass = 2, static = true} end,
     "bad argument #1 to 'body' (field 'mass' must be math.huge or absent for a static body, got 2)")
   T.fails(function() return body{mass = math.huge, static = false} end,
     "bad argument #1 to 'body' (mass = math.huge makes a static body, but field 'static' is false)")
   T.fails(function() return body{static = 1} end,
     "bad argument #1 to 'body' (field 'static' must be a boolean, got number)")
-  T.fails(function() return body{static = true, inertia = I} end,
-    "bad argument #1 to 'body' (field 'inertia' must be absent for a static body (its inertia is infinite))")
+  -- API.md "Bodies": a static body takes no inertia, however it is made static (item 22).
+  local no_inertia = "bad argument #1 to 'body' (field 'inertia' must be absent: a static body "
+    .. "(static = true or mass = math.huge) takes no inertia (its inverse inertia is 0))"
+  T.fails(function() return body{static = true, inertia = I} end, no_inertia)
+  T.fails(function() return body{mass = math.huge, inertia = I} end, no_inertia)
   T.fails(function() return body{static = true, velocity = vec3(1, 0, 0)} end,
-    "bad argument #1 to 'body' (a static body cannot move: velocity and angular_velocity must be zero)")
+    "bad argument #1 to 'body' (field 'velocity' must be zero for a static body (it never moves), "
+    .. "got (1, 0, 0))")
   -- Subnormal masses and moments have inverses that overflow; huge entries overflow the moments.
   T.fails(function() return body{mass = 1e-320, inertia = I} end,
     "bad argument #1 to 'body' (field 'mass' is too small: 1/mass overflows, got 9.9998886718268e-321)")
@@ -197,7 +209,7 @@ T.case("field errors", function()
   T.fails(function() b.orientation = vec3(1, 0, 0) end,
     "bad field 'orientation' of body (quat expected, got vec3)")
   T.fails(function() b.orientation = quat(0, 0, 0, 0) end,
-    "bad field 'orientation' of body (the zero quaternion is not a rotation)")
+    "bad field 'orientation' of body (must be a rotation, got the zero quaternion)")
   T.fails(function() return vec3(0 / 0, 0, 0) end,
     "bad argument #1 to 'vec3' (x must be finite, got nan)")  -- no vec3 holds NaN, but one can
   local infinite = body{static = true}.inertia:row(1)     -- hold inf: a static body's tensor row
@@ -219,12 +231,14 @@ T.case("field errors", function()
     "bad field 'restitution' of body (must be in [0, 1], got nan)")
   T.fails(function() b.friction = -math.huge end,
     "bad field 'friction' of body (must be finite and >= 0, got -inf)")
+  T.fails(function() b.restitution = 1.5 end,
+    "bad field 'restitution' of body (must be in [0, 1], got 1.5)")
   local s = body{static = true}
   T.fails(function() s.velocity = vec3(1, 0, 0) end,
-    "bad field 'velocity' of body (a static body's velocity must stay zero: it never moves)")
+    "bad field 'velocity' of body (must be zero for a static body (it never moves), got (1, 0, 0))")
   T.fails(function() s.angular_velocity = vec3(0, 1, 0) end,
-    "bad field 'angular_velocity' of body (a static body's angular_velocity must stay zero: it "
-    .. "never moves)")
+    "bad field 'angular_velocity' of body (must be zero for a static body (it never moves), got "
+    .. "(0, 1, 0))")
   T.equal(b.position, vec3(), "nothing changed")
 end)
 

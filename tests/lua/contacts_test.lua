@@ -39,7 +39,7 @@ T.case("add_plane: errors", function()
   T.fails(function() w:add_plane{restitution = 2} end,
     "bad argument #1 to 'world:add_plane' (field 'restitution' must be in [0, 1], got 2)")
   T.fails(function() w:add_plane{friction = -1} end,
-    "bad argument #1 to 'world:add_plane' (field 'friction' must be >= 0, got -1)")
+    "bad argument #1 to 'world:add_plane' (field 'friction' must be finite and >= 0, got -1)")
   T.fails(function() w:add_plane{normale = vec3(0, 1, 0)} end,
     "bad argument #1 to 'world:add_plane' (unknown field 'normale' (fields are: normal, offset, " ..
     "restitution, friction))")
@@ -71,7 +71,10 @@ T.case("body materials: defaults, fields, errors", function()
   T.fails(function() return body.sphere{mass = 1, radius = 1, restitution = -1} end,
     "bad argument #1 to 'body.sphere' (field 'restitution' must be in [0, 1], got -1)")
   T.fails(function() return body{mass = 1, inertia = mat3.identity(), friction = 0 / 0} end,
-    "bad argument #1 to 'body' (field 'friction' must be finite, got nan)")
+    "bad argument #1 to 'body' (field 'friction' must be finite and >= 0, got nan)")
+  T.fails(function() return world{}:add_plane{friction = 0 / 0} end,
+    "bad argument #1 to 'world:add_plane' (field 'friction' must be finite and >= 0, got nan)",
+    "planes and bodies share the material rules")
 end)
 
 T.case("world contact settings: defaults, constructor, fields, errors", function()
@@ -103,10 +106,10 @@ T.case("world contact settings: defaults, constructor, fields, errors", function
     function() w.baumgarte = 1.5 end)
   fails("bad field 'max_correction' of world (must be a finite number >= 0 (m), got nan)",
     function() w.max_correction = 0 / 0 end)
-  fails("bad field 'speculative_distance' of world (must be a finite number >= 0 (m), got " ..
-    "boolean)", function() w.speculative_distance = true end)
+  fails("bad field 'speculative_distance' of world (number expected, got boolean)",
+    function() w.speculative_distance = true end)
   fails("bad argument #1 to 'world' (field 'iterations' must be an integer from 1 to 1000, " ..
-    "got many)", function() return world{iterations = "many"} end)
+    "got 'many')", function() return world{iterations = "many"} end)
   fails("bad argument #1 to 'world' (field 'slop' must be a finite number >= 0 (m), got -0.1)",
     function() return world{slop = -0.1} end)
   for name, value in pairs(changed) do T.equal(w[name], value, "unchanged after errors: " .. name) end

@@ -45,4 +45,34 @@ T.case("unknown topics", function()
     "a userdata of another library")
 end)
 
+T.case("names with a NUL byte are refused, not truncated (issue 12 item 12)", function()
+  T.fails(function() help("vec3\0junk") end,
+    "bad argument #1 to 'help' (the topic name must not contain a NUL byte ('\\0' at byte 5 of " ..
+    "9; C reads the name only up to it))", "help('vec3\\0junk') used to show vec3")
+  T.fails(function() help("\0") end, "must not contain a NUL byte ('\\0' at byte 1 of 1;",
+    "a lone NUL")
+end)
+
+T.case("types list their fields from the property table, and each field has help", function()
+  local text = captured("world")
+  assert(text:find("Fields (read/write unless marked):\n  time (read-only): s", 1, true), text)
+  assert(text:find("  substeps: ", 1, true), "substeps listed")
+  assert(text:find("  speculative_distance: m (0.02)", 1, true), "contact settings listed")
+  assert(text:find("Methods:\n  w:add(b) -> b", 1, true), "methods after the fields")
+  for line in text:gmatch("[^\n]+") do
+    assert(utf8.len(line) <= 94, "a line of help(\"world\") is too long: " .. line)
+  end
+  T.equal(captured("world.gravity"), "world.gravity\n  vec3, m/s², default vec3(0, -9.81, 0)",
+    "a property by name")
+  T.equal(captured("body.mass"), "body.mass (read-only)\n  kg (math.huge: static)\n  " ..
+    "Read-only: mass properties and shape are fixed when the body is made.", "a read-only one")
+  T.fails(function() help("world.gravityy") end, "no topic 'world.gravityy'", "unknown field")
+end)
+
+T.case("a static body takes no inertia, and help says so (issue 12 item 22)", function()
+  local text = captured("body")
+  assert(text:find("mass = math.huge makes an immovable body, which takes no inertia", 1, true),
+    text)
+end)
+
 T.finish()

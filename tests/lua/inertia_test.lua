@@ -178,8 +178,8 @@ T.case("exact error messages", function()
     "bad argument #2 to 'inertia.about_axis' (the axis must be finite, got (inf, 0, 0))",
     "infinite axis")
   T.equal(error_of(inertia.points, {{mass = 1, position = vec3()}}),
-    "bad argument #1 to 'inertia.points' (entry 1: unknown field 'position' (the fields are "
-    .. "{mass =, pos =}))", "unknown field")
+    "bad argument #1 to 'inertia.points' (entry 1: unknown field 'position' (fields are: mass, "
+    .. "pos))", "unknown field")
   T.equal(error_of(inertia.points, {{mass = 1}}),
     "bad argument #1 to 'inertia.points' (entry 1: field 'pos' is required)", "missing field")
   T.equal(error_of(inertia.parallel_axis, diag(1, 1, 3), 1, vec3()),

@@ -95,9 +95,12 @@ T.case("errors", function()
   T.fails(function() return mat3{{1, 2, 3}, {4, 5, "x"}, {7, 8, 9}} end,
     "bad argument #1 to 'mat3' (entry (2, 3) must be a number, got string)", "string entry")
   T.fails(function() return m:get(0, 1) end,
-    "bad argument #1 to 'mat3:get' (row must be 1, 2 or 3, got 0)", "row 0")
+    "bad argument #1 to 'mat3:get' (row must be an integer from 1 to 3, got 0)", "row 0")
   T.fails(function() return m:get(1, 1.5) end,
-    "bad argument #2 to 'mat3:get' (column must be an integer 1, 2 or 3, got 1.5)", "col 1.5")
+    "bad argument #2 to 'mat3:get' (column must be an integer from 1 to 3, got 1.5)", "col 1.5")
+  -- Integer-valued floats count as integers everywhere (issue 12 item 20).
+  T.equal(m:get(2.0, 3.0), m:get(2, 3), "2.0 is the integer 2")
+  T.equal(m:row(1.0), m:row(1), "row 1.0")
   T.fails(function() return mat3(1, 2, 3, 2, 4, 6, 0, 0, 1):inverse() end,
     "calling 'mat3:inverse' on bad self (matrix is singular (rank 2, det = 0))", "singular")
   T.fails(function() return mat3(1, 2, 0, 0, 1, 0, 0, 0, 1):eigen() end,
@@ -108,7 +111,8 @@ T.case("errors", function()
   T.fails(function() return m * "x" end,
     "bad argument #2 to 'mat3.__mul' (vec3, mat3 or number expected, got string)", "M * 'x'")
   T.fails(function() return m / 0 end, "division of a mat3 by zero", "M / 0")
-  T.fails(function() m.x = 1 end, "bad field 'x' of mat3 (matrices are immutable", "write")
+  T.fails(function() m.x = 1 end,
+    "bad field 'x' of mat3 (read-only: mat3 values are immutable, like numbers", "write")
   T.fails(function() return m.foo end, "bad field 'foo' of mat3 (no such field", "unknown field")
   T.fails(function() return m * 1e308 * 2 end,
     "bad argument #2 to 'mat3.__mul' (the result is not finite", "overflow")

@@ -76,9 +76,10 @@ T.case("errors name the function and the argument", function()
     local args = table.pack(...)
     T.fails(function() return ode.step(table.unpack(args, 1, args.n)) end, text, text)
   end
-  fails("bad argument #1 to 'ode.step' (method must be 'euler', 'midpoint', 'heun' or 'rk4', " ..
-    "got 'semi_implicit')", "semi_implicit", grow, 0, 1, 0.1)
-  fails("bad argument #1 to 'ode.step' (string expected, got nil)", nil, grow, 0, 1, 0.1)
+  fails("bad argument #1 to 'ode.step' (method must be one of 'euler', 'midpoint', 'heun', " ..
+    "'rk4', got 'semi_implicit')", "semi_implicit", grow, 0, 1, 0.1)
+  fails("bad argument #1 to 'ode.step' (method must be one of 'euler', 'midpoint', 'heun', " ..
+    "'rk4', got nil)", nil, grow, 0, 1, 0.1)
   fails("bad argument #2 to 'ode.step' (function expected, got number)", "rk4", 5, 0, 1, 0.1)
   fails("bad argument #3 to 'ode.step' (t must be finite, got inf)", "rk4", grow, math.huge, 1, 0.1)
   fails("bad argument #4 to 'ode.step' (number, vec3 or table of numbers expected, got string)",

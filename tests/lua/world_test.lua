@@ -117,8 +117,8 @@ end)
 T.case("gyroscopic and rk4: the field refuses what the constructor refuses", function()
   local w = world{integrator = "rk4"}
   T.fails(function() w.gyroscopic = "explicit" end,
-    "bad field 'gyroscopic' of world (it is for the Euler integrators: rk4 always integrates the "
-    .. "full Euler equations)")
+    "bad field 'gyroscopic' of world (must not be set on an rk4 world: it is for the Euler "
+    .. "integrators (rk4 always integrates the full Euler equations))")
   T.equal(w.gyroscopic, "implicit", "unchanged")
   local v = world{gyroscopic = "explicit"}
   T.fails(function() v.integrator = "rk4" end,
@@ -221,7 +221,9 @@ T.case("ownership: same objects, survival across the collector, remove, two worl
   T.fails(function() other:add(b) end,
     "bad argument #1 to 'world:add' (the body is already in another world (remove it there first))")
   T.fails(function() w:add(b) end, "bad argument #1 to 'world:add' (the body is already in this world)")
-  T.fails(function() other:remove(b) end, "bad argument #1 to 'world:remove' (the body is not in this world)")
+  T.fails(function() other:remove(b) end,
+    "bad argument #1 to 'world:remove' (must be a body in this world (w:add it first), got a body "
+    .. "in another world)")
   -- A body outlives its world: readable, and free to join another.
   local survivor = w:bodies()[1]
   w = nil
@@ -298,7 +300,7 @@ T.case("callbacks may only apply forces", function()
     "calling 'world:add_plane' on bad self (the world is stepping: cannot add a plane")
   in_step(function(v) v.gravity = vec3() end,
     "bad field 'gravity' of world (the world is stepping: it cannot be set until world:step "
-    .. "returns)")
+    .. "returns; force callbacks may only apply forces)")
   in_step(function(_, c) c.position = vec3(1, 0, 0) end,
     "bad field 'position' of body (the world is stepping: it cannot be set until world:step "
     .. "returns; force callbacks may only apply forces)")
@@ -331,8 +333,8 @@ T.case("constructor and field errors", function()
     .. "substeps, iterations, position_iterations, restitution_threshold, slop, baumgarte, "
     .. "max_correction, speculative_distance))")
   T.fails(function() return world{integrator = "rk4", gyroscopic = "off"} end,
-    "bad argument #1 to 'world' (field 'gyroscopic' is for the Euler integrators: rk4 always "
-    .. "integrates the full Euler equations)")
+    "bad argument #1 to 'world' (field 'gyroscopic' must not be set on an rk4 world: it is for "
+    .. "the Euler integrators (rk4 always integrates the full Euler equations))")
   local w = world()
   T.fails(function() w.time = 3 end,
     "bad field 'time' of world (read-only: it advances with w:step)")
@@ -371,9 +373,17 @@ T.case("method errors", function()
   local other = world()
   other:step(0.1, 2.0)
   T.near(other.time, 0.2, 1e-15, "n = 2.0 is 2 steps, as luaL_checkinteger would take it")
+  -- One integer rule everywhere (issue 12 item 20): an integral float is the integer.
+  local floats = world{iterations = 2.0, position_iterations = 0.0, substeps = 2.0}
+  T.equal(floats.iterations, 2, "iterations = 2.0")
+  T.equal(math.type(floats.iterations), "integer", "read back as an integer")
+  T.equal(floats.position_iterations, 0, "position_iterations = 0.0")
+  floats.iterations = 3.0
+  T.equal(floats.iterations, 3, "w.iterations = 3.0")
   T.fails(function() w:step(0.1, 1e12) end,
     "bad argument #2 to 'world:step' (n must be an integer from 1 to 100000000, got 1000000000000)")
-  T.fails(function() w:step(0.1, "3") end, "bad argument #2 to 'world:step' (number expected, got string)")
+  T.fails(function() w:step(0.1, "3") end,
+    "bad argument #2 to 'world:step' (n must be an integer from 1 to 100000000, got '3')")
   T.fails(function() w:add(vec3()) end, "bad argument #1 to 'world:add' (body expected, got vec3)")
   T.fails(function() w:add_force("f") end, "bad argument #1 to 'world:add_force' (function expected, got string)")
   T.fails(function() w:add_spring{a = b, k = 1} end,
@@ -391,7 +401,8 @@ T.case("method errors", function()
   T.fails(function() w:add_spring{a = b, anchor = vec3(), b_point = vec3(), k = 1} end,
     "bad argument #1 to 'world:add_spring' (field 'b_point' needs field 'b')")
   T.fails(function() w:add_spring{a = body.sphere{mass = 1, radius = 1}, anchor = vec3(), k = 1} end,
-    "bad argument #1 to 'world:add_spring' (field 'a' is a body that is not in this world (w:add it first))")
+    "bad argument #1 to 'world:add_spring' (field 'a' must be a body in this world (w:add it "
+    .. "first), got a body in no world)")
   T.fails(function() w:add_spring{a = b, anchor = vec3(), k = 1, stiffness = 2} end,
     "bad argument #1 to 'world:add_spring' (unknown field 'stiffness'")
   T.fails(function() w:add_drag{body = b, linear = -1} end,

@@ -34,8 +34,11 @@ return {
   -- one value's metatable replaced (debug.setmetatable): the bindings still know its type
   {"debug.setmetatable(v, " .. mat3_mt .. ") return v:get(1, 1)", "bad argument #1 to 'mat3.__index' (mat3 expected, got vec3)"},
   {"debug.setmetatable(m, " .. vec3_mt .. ") return m.x", "bad argument #1 to 'vec3.__index' (vec3 expected, got mat3)"},
-  {"debug.setmetatable(b, " .. world_mt .. ") return b:step(0.1)", "bad argument #1 to 'world.__index' (world expected, got body)"},
-  {"debug.setmetatable(w, " .. body_mt .. ") return w:apply_force(v)", "bad argument #1 to 'body.__index' (body expected, got world)"},
+  {"debug.setmetatable(b, " .. world_mt .. ") return b:step(0.1)", "calling 'world:step' on bad self (world expected, got body)"},
+  {"debug.setmetatable(b, " .. world_mt .. ") return b.time", "bad argument #1 to 'world.__index' (world expected, got body)"},
+  {"debug.setmetatable(b, " .. world_mt .. ") b.gravity = v", "bad argument #1 to 'world.__newindex' (world expected, got body)"},
+  {"debug.setmetatable(w, " .. body_mt .. ") return w:apply_force(v)", "calling 'body:apply_force' on bad self (body expected, got world)"},
+  {"debug.setmetatable(w, " .. body_mt .. ") return w.position", "bad argument #1 to 'body.__index' (body expected, got world)"},
   {"debug.setmetatable(b, " .. vec3_mt .. ") b.x = 1", "bad argument #1 to 'vec3.__newindex' (vec3 expected, got body)"},
   {"debug.setmetatable(v, nil) return vec3.normalized(vec3.cross(v, v))", "bad argument #1 to 'vec3:normalized' (cannot normalize the zero vector)"},
   {"debug.setmetatable(v, {__index = quat}) return v:norm()", "calling 'quat:norm' on bad self (quat expected, got vec3)"},
