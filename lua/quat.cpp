@@ -1,5 +1,5 @@
 // quat: a quaternion value w + xi + yj + zk (four doubles in a userdata), mainly as a rotation.
-// Fields w, x, y, z (read/write). Rotations use the normalised quaternion, so a slightly
+// Fields w, x, y, z (read-only: a quat is immutable, API.md "Conventions"). Rotations use the normalised quaternion, so a slightly
 // drifted one still rotates correctly; the zero quaternion, which is no rotation, is refused
 // wherever a rotation is needed.
 #include <cmath>
@@ -94,12 +94,18 @@ int quat_index(lua_State* L) {
               "no such field; the fields are w, x, y, z, the methods are in help(\"quat\")");
 }
 
+// quat values are immutable, as vec3 (lua/vec3.cpp): the error says what to write instead.
 int quat_newindex(lua_State* L) {
-  Quat& q = check_quat(L, 1);
+  check_quat(L, 1);
   const int i = component_index(L, 2);
   if (i < 0) field_error(L, "quat", push_key_name(L, 2), "no such field; the fields are w, x, y, z");
-  component(q, i) = check_field_finite(L, "quat", lua_tostring(L, 2), 3);
-  return 0;
+  const char* value = lua_type(L, 3) == LUA_TNUMBER ? push_shown_value(L, 3) : "new";
+  static const char* const forms[] = {"%s, q.x, q.y, q.z", "q.w, %s, q.y, q.z",
+                                      "q.w, q.x, %s, q.z", "q.w, q.x, q.y, %s"};
+  const char* how = lua_pushfstring(
+      L, "q = quat(%s), or for a body b.orientation = quat.axis_angle(axis, angle)",
+      lua_pushfstring(L, forms[i], value));
+  immutable_error(L, "quat", 2, how);
 }
 
 void check_two_quat(lua_State* L, const Quat*& a, const Quat*& b) {
@@ -284,7 +290,8 @@ const Entry metamethods[] = {
     {"__eq", quat_eq, "quat.__eq", "q == r", "Exact equality of all components."},
     {"__tostring", quat_tostring, "quat.__tostring", "tostring(q)", "quat(w, x, y, z)."},
     {"__concat", quat_concat, "quat.__concat", "s .. q", "Concatenation as tostring."},
-    {"__newindex", quat_newindex, "quat.__newindex", "q.w = n", "Sets a component."},
+    {"__newindex", quat_newindex, "quat.__newindex", "q.w = n",
+     "An error: quat values are immutable; build a new one, e.g. q = quat(n, q.x, q.y, q.z)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry index_entry[] = {
@@ -293,7 +300,9 @@ const Entry index_entry[] = {
 
 const Entry constructor[] = {
     {"__call", quat_call, "quat", "quat(w, x, y, z) -> quat",
-     "A quaternion w + xi + yj + zk; quat() is the identity. Fields .w .x .y .z (read/write).\n"
+     "A quaternion w + xi + yj + zk; quat() is the identity. A quat is a value, like a number:\n"
+     "fields .w .x .y .z are read-only (build a new one: q = quat(w, q.x, q.y, q.z), and set a\n"
+     "body's b.orientation = quat.axis_angle(axis, angle)).\n"
      "Functions: quat.identity(), quat.axis_angle(axis, angle), quat.from_mat3(R).\n"
      "Operators: q * r (Hamilton product), q + r, q - r, -q, q * s, s * q, q / s, q == r.\n"
      "Methods: rotate, conj, inverse, norm, normalized, to_mat3, axis_angle, dot, unpack.\n"

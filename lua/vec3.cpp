@@ -1,4 +1,5 @@
-// vec3: a 3-vector value (Eigen::Vector3d in a userdata). Fields x, y, z; arithmetic by
+// vec3: a 3-vector value (Eigen::Vector3d in a userdata). Fields x, y, z (read-only: a vec3
+// is immutable, API.md "Conventions"); arithmetic by
 // metamethods; dot, cross, norm, normalized, outer, skew. Components are always finite: a
 // construction or an operation that would produce NaN or Inf raises an error instead.
 #include <cmath>
@@ -47,12 +48,21 @@ int vec3_index(lua_State* L) {
               "no such field; the fields are x, y, z, the methods are in help(\"vec3\")");
 }
 
+// vec3 values are immutable (API.md "Conventions"): v.x = 1 would change every alias of v,
+// and b.position.x = 5 would change a copy and be lost. The error says what to write instead.
 int vec3_newindex(lua_State* L) {
-  Vec3& v = check_vec3(L, 1);
+  check_vec3(L, 1);
   const int i = component_index(L, 2);
   if (i < 0) field_error(L, "vec3", push_key_name(L, 2), "no such field; the fields are x, y, z");
-  v[i] = check_field_finite(L, "vec3", lua_tostring(L, 2), 3);
-  return 0;
+  const char* value = lua_type(L, 3) == LUA_TNUMBER ? push_shown_value(L, 3) : "new";
+  static const char* const forms[] = {"%s, v.y, v.z", "v.x, %s, v.z", "v.x, v.y, %s"};
+  static const char* const body_forms[] = {"%s, b.position.y, b.position.z",
+                                           "b.position.x, %s, b.position.z",
+                                           "b.position.x, b.position.y, %s"};
+  const char* how = lua_pushfstring(L, "v = vec3(%s), or for a body b.position = vec3(%s)",
+                                    lua_pushfstring(L, forms[i], value),
+                                    lua_pushfstring(L, body_forms[i], value));
+  immutable_error(L, "vec3", 2, how);
 }
 
 // The operands of a binary operator; raises an error that says which operand is wrong.
@@ -210,7 +220,8 @@ const Entry metamethods[] = {
     {"__eq", vec3_eq, "vec3.__eq", "a == b", "Exact equality of all components."},
     {"__tostring", vec3_tostring, "vec3.__tostring", "tostring(a)", "Short form: (x, y, z)."},
     {"__concat", vec3_concat, "vec3.__concat", "s .. a", "Concatenation as tostring."},
-    {"__newindex", vec3_newindex, "vec3.__newindex", "a.x = n", "Sets a component."},
+    {"__newindex", vec3_newindex, "vec3.__newindex", "a.x = n",
+     "An error: vec3 values are immutable; build a new one, e.g. a = vec3(n, a.y, a.z)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry index_entry[] = {
@@ -220,8 +231,11 @@ const Entry index_entry[] = {
 const Entry constructor[] = {
     {"__call", vec3_call, "vec3", "vec3(x, y, z) -> vec3",
      "A 3-vector. Missing components are 0: vec3() is the zero vector, vec3(1) is (1, 0, 0).\n"
-     "Fields: .x .y .z (read/write). Operators: a + b, a - b, -a, a * s, s * a, a / s,\n"
-     "a == b (exact). Methods: dot, cross, norm, normalized, outer, skew, unpack."},
+     "A vec3 is a value, like a number: fields .x .y .z are read-only and operators make new\n"
+     "vectors. To change a component build a new one: v = vec3(5, v.y, v.z), and for a body\n"
+     "b.position = vec3(5, b.position.y, b.position.z) (b.position.x = 5 is an error).\n"
+     "Operators: a + b, a - b, -a, a * s, s * a, a / s, a == b (exact).\n"
+     "Methods: dot, cross, norm, normalized, outer, skew, unpack."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace

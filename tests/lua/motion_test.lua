@@ -75,13 +75,15 @@ T.case("convergence orders on the harmonic oscillator: 1, 1, 4", function()
   end
 end)
 
-T.case("the states handed to accel and returned are copies", function()
+T.case("the states handed to accel and returned are values", function()
+  local seen = {}
   local r = motion.simulate{method = "rk4", x0 = vec3(1, 0, 0), v0 = vec3(0, 1, 0), dt = 0.1,
                             steps = 3,
-                            accel = function(_, x, v) x.x = 99; v.y = 99; return vec3() end}
-  T.near(r.x[4], vec3(1, 0.3, 0), 1e-12, "free motion despite accel writing its arguments")
-  r.x[1].x = 5
-  T.near(r.x[2], vec3(1, 0.1, 0), 1e-15, "entries are separate values")
+                            accel = function(_, x, v) seen[#seen + 1] = x; return vec3() end}
+  T.near(r.x[4], vec3(1, 0.3, 0), 1e-12, "free motion")
+  T.fails(function() seen[1].x = 99 end, "bad field 'x' of vec3 (read-only", "accel's x")
+  T.fails(function() r.x[1].x = 5 end, "bad field 'x' of vec3 (read-only", "an entry")
+  T.near(r.x[2], vec3(1, 0.1, 0), 1e-15, "entries unchanged")
   local zero = motion.simulate{accel = function() return 1 end, x0 = 3, dt = 1, steps = 0}
   T.equal(#zero.x, 1, "steps = 0 gives the initial state only")
   T.equal(zero.x[1], 3, "x0")
@@ -93,11 +95,11 @@ T.case("errors name the function, the field and the rule", function()
     T.fails(function() return motion.simulate(options) end, text, what)
   end
   fails({method = "rk5", accel = ok_accel, x0 = 0, dt = 1, steps = 1},
-    "bad argument #1 to 'motion.simulate' (field 'method' must be 'euler', 'semi_implicit' " ..
-    "or 'rk4', got 'rk5')", "unknown method")
+    "bad argument #1 to 'motion.simulate' (field 'method' must be one of 'euler', " ..
+    "'semi_implicit', 'rk4', got 'rk5')", "unknown method")
   fails({method = 4, accel = ok_accel, x0 = 0, dt = 1, steps = 1},
-    "bad argument #1 to 'motion.simulate' (field 'method' must be a string, got number)",
-    "method type")
+    "bad argument #1 to 'motion.simulate' (field 'method' must be one of 'euler', " ..
+    "'semi_implicit', 'rk4', got number)", "method type")
   fails({accel = ok_accel, x0 = 0, dt = 1e308, steps = 3},
     "bad argument #1 to 'motion.simulate' (the last time t0 + steps·dt overflows (t0 = 0, " ..
     "dt = 1e+308, steps = 3): use a smaller dt or fewer steps)", "time overflow")
@@ -126,14 +128,15 @@ T.case("errors name the function, the field and the rule", function()
   fails({accel = ok_accel, x0 = 0, dt = 1},
     "bad argument #1 to 'motion.simulate' (field 'steps' is required)", "no steps")
   fails({accel = ok_accel, x0 = 0, dt = 1, steps = 2.5},
-    "bad argument #1 to 'motion.simulate' (field 'steps' must be an integer >= 0, got 2.5)",
-    "fractional steps")
+    "bad argument #1 to 'motion.simulate' (field 'steps' must be an integer from 0 to 1000000, "
+    .. "got 2.5)", "fractional steps")
   fails({accel = ok_accel, x0 = 0, dt = 1, steps = -1},
-    "bad argument #1 to 'motion.simulate' (field 'steps' must be an integer >= 0, got -1)",
-    "negative steps")
+    "bad argument #1 to 'motion.simulate' (field 'steps' must be an integer from 0 to 1000000, "
+    .. "got -1)", "negative steps")
   fails({accel = ok_accel, x0 = 0, dt = 1, steps = 1e7},
-    "bad argument #1 to 'motion.simulate' (field 'steps' must be <= 1000000 (the whole " ..
-    "trajectory is kept), got 10000000)", "too many steps")
+    "bad argument #1 to 'motion.simulate' (field 'steps' must be an integer from 0 to 1000000, "
+    .. "got 10000000)", "too many steps")
+  T.equal(#motion.simulate{accel = ok_accel, x0 = 0, dt = 1, steps = 2.0}.x, 3, "steps = 2.0")
   fails({accel = ok_accel, x0 = 0, dt = 1, steps = 1, t0 = "now"},
     "bad argument #1 to 'motion.simulate' (field 't0' must be a number, got string)", "t0")
   fails({accel = ok_accel, x0 = 0, dt = 1, steps = 1, x = 0},

@@ -10,8 +10,11 @@ end
 T.case("construction and fields", function()
   local q = quat(1, 2, 3, 4)
   T.equal(q.w, 1, "w"); T.equal(q.z, 4, "z")
-  q.x = 0
-  T.equal(q, quat(1, 0, 3, 4), "write x")
+  T.fails(function() q.x = 0 end,
+    "bad field 'x' of quat (read-only: quat values are immutable, like numbers; build a new " ..
+    "one, e.g. q = quat(q.w, 0, q.y, q.z), or for a body b.orientation = " ..
+    "quat.axis_angle(axis, angle))", "fields are read-only (API.md Conventions)")
+  T.equal(q, quat(1, 2, 3, 4), "the failed write changed nothing")
   T.equal(quat(), quat.identity(), "quat() is the identity")
   T.equal(tostring(quat.identity()), "quat(1, 0, 0, 0)", "tostring")
 end)
