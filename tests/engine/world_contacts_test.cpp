@@ -15,18 +15,7 @@
 
 #include "engine/world.hpp"
 
-// Counts heap allocations, to check that stepping a world with contacts allocates nothing once
-// its buffers have grown (common brief: no per-step heap allocation).
-namespace {
-std::atomic<long> allocations{0};
-}
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/engine/allocation_counter.hpp"  // replaces operator new: counts allocations
 
 namespace rigidlab {
 namespace {
