@@ -2,6 +2,9 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <iterator>
+
+#include "engine/free_rotation.hpp"
 
 namespace rigidlab {
 namespace {
@@ -26,12 +29,7 @@ std::optional<Enum> parse_name(const char* const (&names)[N], std::string_view n
 
 // rotate_by, here so the body loops inline it.
 inline Quat exact_rotation(const Quat& q, const Vec3& omega_world, double dt) {
-  const Vec3 theta = dt * omega_world;
-  const double angle = stable_norm(theta);
-  // sin(angle/2)/angle, by its Taylor series 1/2 − angle²/48 near 0 (error < angle⁴/3840).
-  const double s = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(0.5 * angle) / angle;
-  const Quat rotation(std::cos(0.5 * angle), s * theta.x(), s * theta.y(), s * theta.z());
-  return unit(Quat(rotation * q));
+  return unit(Quat(rotation_quat(dt * omega_world) * q));
 }
 
 // implicit_gyroscopic_step, here so the body loops inline it.
@@ -76,6 +74,20 @@ std::size_t first_non_finite(const std::vector<Body>& bodies) {
   return all_finite;
 }
 
+// One body of the Euler family with `conserving`: the translation as in the loop below, the
+// rotation one step of free_rotation (its torque impulse included). Returns the state's sum.
+template <bool semi_implicit>
+double conserving_update(Body& b, const Vec3& gravity, double dt) {
+  const Vec3 velocity = b.velocity + dt * (b.inverse_mass * b.force + gravity);
+  if constexpr (semi_implicit) b.velocity = velocity;
+  b.position += dt * b.velocity;
+  b.velocity = velocity;
+  free_rotation_step(b, dt);
+  b.force = Vec3::Zero();
+  b.torque = Vec3::Zero();
+  return state_sum(b);
+}
+
 // The Euler-family loop, with the gyroscopic treatment and the saving of the old state fixed
 // at compile time, so the body loop has no switch. `semi_implicit` selects whether x and q use
 // the new (true) or old velocities. The old state is saved from locals at the end of each
@@ -88,7 +100,9 @@ RIGIDLAB_FLATTEN std::size_t euler_family_loop(std::vector<Body>& bodies, const 
   for (std::size_t i = 0; i < n; ++i) {
     Body& b = bodies[i];
     const BodyState old = state_of(b);
-    if (b.inverse_mass != 0.0) {
+    if constexpr (gyroscopic == GyroscopicTerm::conserving) {
+      if (b.inverse_mass != 0.0) probe += 0.0 * conserving_update<semi_implicit>(b, gravity, dt);
+    } else if (b.inverse_mass != 0.0) {
       const Mat3 r = b.orientation.toRotationMatrix();
       const Vec3 velocity = b.velocity + dt * (b.inverse_mass * b.force + gravity);
       const Vec3 angular_velocity = angular_velocity_update<gyroscopic>(b, r, dt);
@@ -128,6 +142,9 @@ template <bool semi_implicit>
 std::size_t euler_family_step(std::vector<Body>& bodies, const Vec3& gravity,
                               GyroscopicTerm gyroscopic, double dt, BodyState* save_to) {
   switch (gyroscopic) {
+    case GyroscopicTerm::conserving:
+      return euler_family_loop<semi_implicit, GyroscopicTerm::conserving>(bodies, gravity, dt,
+                                                                          save_to);
     case GyroscopicTerm::implicit:
       return euler_family_loop<semi_implicit, GyroscopicTerm::implicit>(bodies, gravity, dt,
                                                                         save_to);
@@ -250,11 +267,11 @@ RIGIDLAB_FLATTEN std::size_t rk4_stage(std::vector<Body>& bodies, const Vec3& gr
 }  // namespace
 
 std::optional<Integrator> parse_integrator(std::string_view name) {
-  return parse_name<3, Integrator>(integrator_names, name);
+  return parse_name<std::size(integrator_names), Integrator>(integrator_names, name);
 }
 
 std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name) {
-  return parse_name<3, GyroscopicTerm>(gyroscopic_names, name);
+  return parse_name<std::size(gyroscopic_names), GyroscopicTerm>(gyroscopic_names, name);
 }
 
 Quat rotate_by(const Quat& q, const Vec3& omega_world, double dt) {

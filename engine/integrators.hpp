@@ -27,12 +27,14 @@
 namespace rigidlab {
 
 enum class Integrator { euler, semi_implicit, rk4 };
-// How the Euler family treats the gyroscopic torque −ω × I ω. (`explicit` is a keyword.)
-enum class GyroscopicTerm { implicit, explicit_, off };
+// How the Euler family treats the gyroscopic torque −ω × I ω (`explicit` is a keyword):
+// `conserving` replaces the whole rotational update by the splitting of engine/free_rotation.hpp.
+enum class GyroscopicTerm { conserving, implicit, explicit_, off };
+inline constexpr GyroscopicTerm default_gyroscopic = GyroscopicTerm::implicit;
 
 // The user-facing names, in enum order.
 inline constexpr const char* integrator_names[] = {"euler", "semi_implicit", "rk4"};
-inline constexpr const char* gyroscopic_names[] = {"implicit", "explicit", "off"};
+inline constexpr const char* gyroscopic_names[] = {"conserving", "implicit", "explicit", "off"};
 std::optional<Integrator> parse_integrator(std::string_view name);
 std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name);
 
@@ -88,7 +90,8 @@ Vec3 implicit_gyroscopic_step(const Mat3& inertia, const Vec3& omega_body, doubl
 // Explicit (forward) Euler on the whole state: every right-hand side at the start of the step,
 //   x' = x + dt v,  q' = Rotate(dt ω) q,  v' = v + dt (F/m + g),  ω' = ω + dt ω̇
 // with ω̇ per `gyroscopic` (see angular_velocity_update in the .cpp). Order 1; gains energy on
-// an oscillator. 003_* "Explicit Euler", 002_* "Newton-Euler Equations".
+// an oscillator. 003_* "Explicit Euler", 002_* "Newton-Euler Equations". With `conserving`,
+// (q, ω) take one step of free_rotation (engine/free_rotation.hpp) under either integrator.
 std::size_t euler_step(std::vector<Body>& bodies, const Vec3& gravity, GyroscopicTerm gyroscopic,
                        double dt, BodyState* save_to = nullptr);
 

@@ -161,7 +161,7 @@ class World {
   std::shared_ptr<BodyStore> store_;
   Vec3 gravity_;
   Integrator integrator_ = Integrator::semi_implicit;
-  GyroscopicTerm gyroscopic_ = GyroscopicTerm::implicit;
+  GyroscopicTerm gyroscopic_ = default_gyroscopic;
   int substeps_ = 1;
   double time_ = 0.0;
   std::vector<Spring> springs_;

@@ -321,7 +321,7 @@ T.case("constructor and field errors", function()
   T.fails(function() return world{integrator = 4} end,
     "bad argument #1 to 'world' (field 'integrator' must be one of 'euler', 'semi_implicit', 'rk4', got number)")
   T.fails(function() return world{gyroscopic = "yes"} end,
-    "bad argument #1 to 'world' (field 'gyroscopic' must be one of 'implicit', 'explicit', 'off', got 'yes')")
+    "bad argument #1 to 'world' (field 'gyroscopic' must be one of 'conserving', 'implicit', 'explicit', 'off', got 'yes')")
   T.fails(function() return world{substeps = 0} end,
     "bad argument #1 to 'world' (field 'substeps' must be an integer from 1 to 10000, got 0)")
   T.fails(function() return world{substeps = 1.5} end,
