@@ -30,7 +30,7 @@ enum class Integrator { euler, semi_implicit, rk4 };
 // How the Euler family treats the gyroscopic torque −ω × I ω (`explicit` is a keyword):
 // `conserving` replaces the whole rotational update by the splitting of engine/free_rotation.hpp.
 enum class GyroscopicTerm { conserving, implicit, explicit_, off };
-inline constexpr GyroscopicTerm default_gyroscopic = GyroscopicTerm::implicit;
+inline constexpr GyroscopicTerm default_gyroscopic = GyroscopicTerm::conserving;
 
 // The user-facing names, in enum order.
 inline constexpr const char* integrator_names[] = {"euler", "semi_implicit", "rk4"};

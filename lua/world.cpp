@@ -347,9 +347,11 @@ const Entry call_entry[] = {
      "integrator: \"euler\" (explicit: positions from the old velocities), \"semi_implicit\"\n"
      "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
      "order on the whole state, gyroscopic term included); gyroscopic, for the Euler methods:\n"
-     "\"implicit\" (one Newton step on ω × Iω per substep, stable), \"explicit\" (gains\n"
-     "energy) or \"off\" (refused on an rk4 world, which would ignore it; switching to rk4\n"
-     "needs the default gyroscopic setting); substeps (default 1) per w:step(dt).\n"
+     "\"conserving\" (default; exact rotations about the principal axes: a torque-free body\n"
+     "keeps L to round-off and its energy without drift), \"implicit\" (one Newton step on\n"
+     "ω × Iω per substep: stable, but loses energy and ‖L‖), \"explicit\" (gains energy) or\n"
+     "\"off\" (refused on an rk4 world, which would ignore it; switching to rk4 needs the\n"
+     "default gyroscopic setting); substeps (default 1) per w:step(dt).\n"
      "Contacts: bodies with a shape collide with each other and with planes (w:add_plane)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 

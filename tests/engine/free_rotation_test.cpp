@@ -407,7 +407,8 @@ TEST(FreeRotationInterface, SplittingOrder) {
   EXPECT_LT((back - pm * Vec3(3.0, 1.0, 2.0).asDiagonal() * pm.transpose()).norm(), 1e-14);
 }
 
-TEST(FreeRotationInterface, ConservingParses) {
+TEST(FreeRotationInterface, ConservingIsTheDefaultAndParses) {
+  EXPECT_EQ(World().gyroscopic(), GyroscopicTerm::conserving);
   EXPECT_EQ(parse_gyroscopic("conserving"), GyroscopicTerm::conserving);
   EXPECT_EQ(parse_gyroscopic("implicit"), GyroscopicTerm::implicit);
 }

@@ -8,7 +8,7 @@
 -- value in the same commit, saying why), not that rigidlab became nondeterministic.
 local T = dofile("testing.lua")
 
-local STORED_HASH = "7704cfe47d92b1f2"
+local STORED_HASH = "c199d1c88f322088"
 
 -- A tiny linear congruential generator, so the scene does not depend on math.random.
 local function generator(seed)

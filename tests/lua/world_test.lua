@@ -7,12 +7,12 @@ local T = dofile("testing.lua")
 T.case("defaults and fields", function()
   local w = world()
   T.equal(w.gravity, vec3(0, -9.81, 0), "gravity"); T.equal(w.time, 0, "time")
-  T.equal(w.integrator, "semi_implicit", "integrator"); T.equal(w.gyroscopic, "implicit", "gyroscopic")
+  T.equal(w.integrator, "semi_implicit", "integrator"); T.equal(w.gyroscopic, "conserving", "gyroscopic")
   T.equal(w.substeps, 1, "substeps")
   w.gravity = vec3(0, 0, -1); w.integrator = "euler"; w.gyroscopic = "off"; w.substeps = 4
   T.equal(w.gravity, vec3(0, 0, -1), "gravity written"); T.equal(w.integrator, "euler", "integrator written")
   T.equal(w.gyroscopic, "off", "gyroscopic written"); T.equal(w.substeps, 4, "substeps written")
-  w.gyroscopic = "implicit"; w.integrator = "rk4"
+  w.gyroscopic = "conserving"; w.integrator = "rk4"
   T.equal(tostring(w), "world(0 bodies, t=0, rk4)", "tostring")
   w.substeps = 3.0
   T.equal(w.substeps, 3, "3.0 is an integer, as for luaL_checkinteger")
@@ -119,13 +119,13 @@ T.case("gyroscopic and rk4: the field refuses what the constructor refuses", fun
   T.fails(function() w.gyroscopic = "explicit" end,
     "bad field 'gyroscopic' of world (must not be set on an rk4 world: it is for the Euler "
     .. "integrators (rk4 always integrates the full Euler equations))")
-  T.equal(w.gyroscopic, "implicit", "unchanged")
+  T.equal(w.gyroscopic, "conserving", "unchanged")
   local v = world{gyroscopic = "explicit"}
   T.fails(function() v.integrator = "rk4" end,
     "bad field 'integrator' of world ('rk4' ignores world.gyroscopic = 'explicit' (rk4 always "
-    .. "integrates the full Euler equations): set world.gyroscopic = 'implicit' first)")
+    .. "integrates the full Euler equations): set world.gyroscopic = 'conserving' first)")
   T.equal(v.integrator, "semi_implicit", "unchanged")
-  v.gyroscopic = "implicit"; v.integrator = "rk4"
+  v.gyroscopic = "conserving"; v.integrator = "rk4"
   T.equal(v.integrator, "rk4", "allowed once the gyroscopic setting is the default")
 end)
 
