@@ -2,6 +2,7 @@
 #include "engine/format.hpp"
 
 #include <string>
+#include <utility>
 
 #include "engine/aba.hpp"
 #include "engine/crba.hpp"
@@ -45,19 +46,34 @@ void Articulation::check_link(int link) const {
                                 std::to_string(link + 1));
 }
 
+// Built on copies and committed by swaps (which cannot throw), so that a std::bad_alloc while
+// growing the workspace or the state leaves the articulation as it was.
 int Articulation::add_link(const LinkSpec& spec) {
   check_not_stepping("add a link");
-  const bool moves = spec.joint != JointType::fixed;
-  const int link = model_.add_link(spec);  // throws before anything changes
-  ws_.resize(model_);
-  if (moves) {  // the new joint's entries are the last ones of q, q̇ and τ
-    q_.conservativeResize(model_.nq());
-    v_.conservativeResize(model_.nv());
-    tau_.conservativeResize(model_.nv());
-    q_[model_.nq() - 1] = v_[model_.nv() - 1] = tau_[model_.nv() - 1] = 0.0;
-    applied_ = qdd_ = v0_ = v_sum_ = v_;
-    q0_ = q_rate_ = q_sum_ = q_;
+  ArticulationModel model = model_;
+  const int link = model.add_link(spec);  // throws before anything changes
+  ArticulationWorkspace ws;
+  ws.resize(model);
+  Eigen::VectorXd q = q_, v = v_, tau = tau_;
+  if (model.nv() > model_.nv()) {  // the new joint's entries are the last ones of q, q̇ and τ
+    q.conservativeResize(model.nq());
+    v.conservativeResize(model.nv());
+    tau.conservativeResize(model.nv());
+    q[model.nq() - 1] = v[model.nv() - 1] = tau[model.nv() - 1] = 0.0;
   }
+  Eigen::VectorXd applied = v, qdd = v, v0 = v, v_sum = v, q0 = q, q_rate = q, q_sum = q;
+  std::swap(model_, model);
+  std::swap(ws_, ws);
+  q_.swap(q);
+  v_.swap(v);
+  tau_.swap(tau);
+  applied_.swap(applied);
+  qdd_.swap(qdd);
+  v0_.swap(v0);
+  v_sum_.swap(v_sum);
+  q0_.swap(q0);
+  q_rate_.swap(q_rate);
+  q_sum_.swap(q_sum);
   return link;
 }
 

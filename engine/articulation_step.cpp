@@ -21,6 +21,12 @@ Eigen::Vector4d quaternion_rate(const Eigen::VectorXd& q, const Vec3& omega) {
                                vector_part.z());
 }
 
+std::string diverged_message(double t0) {
+  return "the step from t = " + format_number(t0) +
+         " s would leave a state that is not finite (the motion diverged: take a smaller dt or "
+         "smaller torques); the state is as before the step";
+}
+
 void normalize_base_orientation(const ArticulationModel& model, Eigen::VectorXd& q) {
   if (model.free_base()) q.segment<4>(3).normalize();
 }
@@ -79,7 +85,10 @@ void Articulation::step_once(double dt) {
       case Integrator::rk4: rk4(dt); break;
     }
   } catch (const std::domain_error& singular) {
+    // A stage state that overflowed makes the algorithm's pivots NaN: say what happened.
+    const bool diverged = !(q_.allFinite() && v_.allFinite());
     restore();
+    if (diverged) throw ArticulationStepError(diverged_message(t0), t0);
     throw ArticulationStepError(std::string(singular.what()) + " (in the step from t = " +
                                     format_number(t0) + " s)",
                                 t0);
@@ -90,11 +99,7 @@ void Articulation::step_once(double dt) {
   stepping_ = false;
   if (!(q_.allFinite() && v_.allFinite())) {
     restore();
-    throw ArticulationStepError("the step from t = " + format_number(t0) +
-                                    " s would leave a state that is not finite (the motion "
-                                    "diverged: take a smaller dt or smaller torques); the state "
-                                    "is as before the step",
-                                t0);
+    throw ArticulationStepError(diverged_message(t0), t0);
   }
   time_ = t0 + dt;
 }

@@ -20,5 +20,6 @@ void open_ode(lua_State* L, int lib);
 void open_collide(lua_State* L, int lib);
 void open_body(lua_State* L, int lib);
 void open_world(lua_State* L, int lib);
+void open_articulation(lua_State* L, int lib);
 
 }  // namespace rigidlab::lua

@@ -23,6 +23,7 @@ int open_library(lua_State* L) {
   open_collide(L, lib);
   open_body(L, lib);
   open_world(L, lib);
+  open_articulation(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;
