@@ -79,6 +79,24 @@ Camera fit_camera(const Scene& scene, double fov, int columns, int rows, double 
   return camera;
 }
 
+Camera orbit(const Camera& camera, double azimuth, double elevation) {
+  const Point3 up = camera.up.normalized();
+  const Point3 offset = camera.eye - camera.target;
+  const double distance = offset.norm();
+  // Spherical coordinates of the eye about the target, with `up` as the pole.
+  const double height = std::clamp(offset.normalized().dot(up), -1.0, 1.0);
+  double lift = std::asin(height) + elevation;
+  const double limit = 85 * pi / 180;
+  lift = std::clamp(lift, -limit, limit);
+  Point3 flat = offset - offset.dot(up) * up;
+  if (flat.norm() < 1e-12 * distance)  // looking along up: any horizontal direction will do
+    flat = up.cross(std::fabs(up.x()) < 0.9 ? Point3::UnitX() : Point3::UnitZ());
+  const Point3 toward = Eigen::AngleAxisd(azimuth, up) * flat.normalized();
+  Camera out = camera;
+  out.eye = camera.target + distance * (std::cos(lift) * toward + std::sin(lift) * up);
+  return out;
+}
+
 Projection::Projection(const Camera& camera, int dots_x, int dots_y, double dot_aspect)
     : eye_(camera.eye) {
   forward_ = (camera.target - camera.eye).normalized();

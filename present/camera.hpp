@@ -25,6 +25,11 @@ std::string camera_problem(const Camera& camera);
 // bounding sphere fits the frame of `columns` x `rows` cells of aspect `cell_aspect`.
 Camera fit_camera(const Scene& scene, double fov, int columns, int rows, double cell_aspect = 2.0);
 
+// The camera moved on a sphere about its target: `azimuth` radians about the up direction
+// (positive: the eye goes to the right), `elevation` radians towards up; the elevation stays
+// within 85 degrees of the horizon, so up never lines up with the line of sight.
+Camera orbit(const Camera& camera, double azimuth, double elevation);
+
 // The centre and radius of a sphere holding every body (its bounding sphere), curve point and
 // arrow of the scene; radius 0 for an empty scene.
 void scene_bounds(const Scene& scene, Point3& center, double& radius);

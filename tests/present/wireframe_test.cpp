@@ -204,6 +204,18 @@ TEST(Wireframe, DefaultFramingKeepsTheSceneInside) {
   }
 }
 
+TEST(Camera, OrbitKeepsTheDistanceAndTurnsAboutUp) {
+  const Camera c = camera_at(Point3(0, 0, 5));
+  const Camera right = orbit(c, pi / 2, 0);
+  EXPECT_NEAR((right.eye - Point3(5, 0, 0)).norm(), 0, 1e-12);  // a quarter turn about +y
+  const Camera high = orbit(c, 0, pi / 6);
+  EXPECT_NEAR(high.eye.norm(), 5, 1e-12);
+  EXPECT_NEAR(high.eye.y(), 5 * std::sin(pi / 6), 1e-12);
+  const Camera top = orbit(c, 0, 3.0);  // clamped at 85 degrees
+  EXPECT_NEAR(std::asin(top.eye.y() / 5), 85 * pi / 180, 1e-12);
+  EXPECT_EQ(camera_problem(top), "");
+}
+
 TEST(Wireframe, CameraProblemsAreNamed) {
   EXPECT_EQ(camera_problem(camera_at(Point3::Zero())), "eye and target must differ");
   Camera c = camera_at(Point3(0, 5, 0));
