@@ -1,5 +1,6 @@
 #include "engine/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/format.hpp"
@@ -267,8 +268,21 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
     }
     t += dt;
     time_ = t;
+    for (const std::shared_ptr<StepObserver>& o : observers_) o->after_step(*this);
   }
   guard.commit();
+}
+
+void World::add_step_observer(std::shared_ptr<StepObserver> observer) {
+  require_not_stepping(*this, "add an observer");
+  observers_.push_back(std::move(observer));
+}
+
+void World::remove_step_observer(const StepObserver* observer) {
+  require_not_stepping(*this, "remove an observer");
+  observers_.erase(std::remove_if(observers_.begin(), observers_.end(),
+                                  [&](const auto& o) { return o.get() == observer; }),
+                   observers_.end());
 }
 
 void World::throw_non_finite(std::size_t index, double t0, double t1, double call_start) const {

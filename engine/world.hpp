@@ -77,6 +77,14 @@ class StepError : public std::runtime_error {
 // stage's state); it applies forces with apply_force / apply_torque.
 using ForceCallback = std::function<void(World&, double t)>;
 
+// Something that watches a world's motion (a recorder): told after every completed step, with
+// the world in the state that step left. It must neither change the world nor throw.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void after_step(const World& world) noexcept = 0;
+};
+
 class World {
  public:
   static constexpr int max_substeps = 10000;
@@ -137,6 +145,10 @@ class World {
   // states and store().stepping() is true.
   void step(double dt, long count = 1, const std::function<void()>& poll = {});
   double time() const { return time_; }  // s; during a step, the time of the current stage
+  // Observers of completed steps (recorders); the world shares their ownership. Adding or
+  // removing one during a step is a std::logic_error.
+  void add_step_observer(std::shared_ptr<StepObserver> observer);
+  void remove_step_observer(const StepObserver* observer);
   bool stepping() const { return store_->stepping_; }
 
   // ---- totals (dynamic bodies; static ones have no momentum and no energy) ----
@@ -173,6 +185,7 @@ class World {
   std::vector<BodyState> snapshot_;  // the state before the current step, for undoing it
   Rk4Workspace rk4_;
   std::function<void(double)> stage_forces_;  // evaluate_forces, bound once for rk4_step
+  std::vector<std::shared_ptr<StepObserver>> observers_;
 };
 
 }  // namespace rigidlab

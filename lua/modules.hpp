@@ -21,5 +21,7 @@ void open_collide(lua_State* L, int lib);
 void open_body(lua_State* L, int lib);
 void open_world(lua_State* L, int lib);
 void open_articulation(lua_State* L, int lib);
+void open_render(lua_State* L, int lib);  // after open_world: world methods
+void open_record(lua_State* L, int lib);  // after open_world: world methods
 
 }  // namespace rigidlab::lua

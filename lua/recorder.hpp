@@ -30,7 +30,7 @@ const std::vector<SeriesInfo>& series_list();
 // The series called `name` for a world (per_body false) or a body (true), or nullptr.
 const SeriesInfo* find_series(const std::string& name, bool per_body);
 
-class Recorder {
+class Recorder : public StepObserver {
  public:
   // Records the bodies `ids` of `world` (in that order) every `every` >= 1 steps, starting
   // with a sample of the state now.
@@ -38,7 +38,7 @@ class Recorder {
 
   // Called after each completed step. Every `every`-th step appends a sample; when a recorded
   // body has left the world, or memory runs out, recording stops and stop_reason() says why.
-  void after_step(const World& world) noexcept;
+  void after_step(const World& world) noexcept override;
   void stop(const std::string& reason);
 
   bool recording() const { return recording_; }

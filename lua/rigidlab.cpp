@@ -24,6 +24,8 @@ int open_library(lua_State* L) {
   open_body(L, lib);
   open_world(L, lib);
   open_articulation(L, lib);
+  open_render(L, lib);
+  open_record(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;

@@ -33,10 +33,9 @@ void scene_bounds(const Scene& scene, Point3& center, double& radius) {
                                                     : 0.0;
     spheres.emplace_back(b.position, r);
   }
-  for (const SceneArrow& a : scene.arrows) {
-    spheres.emplace_back(a.origin, 0.0);
-    spheres.emplace_back(a.origin + a.vector, 0.0);
-  }
+  // An arrow counts as the sphere it sweeps as it turns, so the framing does not follow its
+  // direction from frame to frame.
+  for (const SceneArrow& a : scene.arrows) spheres.emplace_back(a.origin, a.vector.norm());
   for (const SceneEllipsoid& e : scene.ellipsoids) spheres.emplace_back(e.center, e.semi_axes.maxCoeff());
   for (const SceneMarker& m : scene.markers) spheres.emplace_back(m.position, 0.0);
   for (const SceneCurve& c : scene.curves)

@@ -30,8 +30,9 @@ Camera fit_camera(const Scene& scene, double fov, int columns, int rows, double 
 // within 85 degrees of the horizon, so up never lines up with the line of sight.
 Camera orbit(const Camera& camera, double azimuth, double elevation);
 
-// The centre and radius of a sphere holding every body (its bounding sphere), curve point and
-// arrow of the scene; radius 0 for an empty scene.
+// The centre and radius of a sphere holding every body (its bounding sphere), curve point,
+// marker, ellipsoid and arrow (the sphere it sweeps as it turns) of the scene; radius 0 for
+// an empty scene.
 void scene_bounds(const Scene& scene, Point3& center, double& radius);
 
 class Projection {

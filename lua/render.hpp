@@ -1,0 +1,46 @@
+// w:render's options and the frame they ask for, shared with the live view (w:view), which
+// reads the same options and draws frame after frame.
+#pragma once
+
+#include <lua.hpp>
+
+#include <string>
+
+#include "lua/render_scene.hpp"
+#include "present/camera.hpp"
+#include "present/style.hpp"
+
+namespace rigidlab::lua {
+
+// camera = {eye =, target =, up =, fov =}, each part optional.
+struct CameraRequest {
+  bool has_eye = false, has_target = false, has_up = false;
+  Vec3 eye = Vec3::Zero(), target = Vec3::Zero(), up = Vec3::UnitY();
+  double fov = 40.0;
+};
+
+struct RenderRequest {
+  int width = 80, height = 24;
+  CameraRequest camera;
+  SceneRequest scene;     // the overlays
+  bool trail = false;     // trails from the world's recorder
+  present::TextStyle style;
+  bool legend = true;
+};
+
+// Reads the option table at `arg` (absent: the defaults); errors name its fields. The style
+// defaults to the terminal's (stdout): Unicode in a UTF-8 locale, colour in a terminal
+// without NO_COLOR.
+RenderRequest check_render_request(lua_State* L, int arg);
+
+// The camera the request asks for, the parts left out framing `scene`; false (and `problem`)
+// when the parts given cannot make a camera.
+bool resolve_camera(const CameraRequest& request, const present::Scene& scene, int width,
+                    int height, present::Camera& camera, std::string& problem);
+
+// The frame of the world at stack index `world` (options read already from the table at stack
+// index 2, which errors blame): the scene with the
+// overlays asked for, drawn through the camera asked for.
+std::string render_world(lua_State* L, int world, const RenderRequest& request);
+
+}  // namespace rigidlab::lua

@@ -1,0 +1,138 @@
+-- w:record: every series equals what the world's and bodies' own accessors give at the same
+-- steps; every, bodies, stop and CSV; what stops a recording; the agreed errors.
+local T = dofile("testing.lua")
+
+local function scene()
+  local w = world{}
+  w:add_plane{}
+  local box = w:add(body.box{mass = 2, size = vec3(0.5, 0.15, 1), position = vec3(0, 2, 0),
+                             angular_velocity = vec3(1, 0.3, 2), velocity = vec3(1, 0, 0)})
+  local ball = w:add(body.sphere{mass = 1, radius = 0.2, position = vec3(2, 0.5, 0)})
+  return w, box, ball
+end
+
+-- What the accessors say now, for the comparison.
+local function observe(w, b)
+  local q = b.orientation
+  return {
+    t = w.time, kinetic_energy = w:kinetic_energy(), potential_energy = w:potential_energy(),
+    energy = w:energy(), linear_momentum = w:linear_momentum(),
+    angular_momentum = w:angular_momentum(),
+    position = b.position, orientation = q, velocity = b.velocity,
+    angular_velocity = b.angular_velocity,
+    velocity_body = q:conj():rotate(b.velocity),
+    angular_velocity_body = q:conj():rotate(b.angular_velocity),
+    body_kinetic_energy = b:kinetic_energy(), body_angular_momentum = b:angular_momentum(),
+    angular_momentum_body = q:conj():rotate(b:angular_momentum()),
+  }
+end
+
+T.case("series equal the accessors at the same steps", function()
+  local w, box = scene()
+  local rec = w:record{}
+  local seen = {observe(w, box)}
+  for _ = 1, 40 do
+    w:step(1 / 60)
+    seen[#seen + 1] = observe(w, box)
+  end
+  T.equal(#rec, 41, "a sample at the start and one per step")
+  T.equal(rec.count, 41, "count")
+  local world_names = {"kinetic_energy", "potential_energy", "energy", "linear_momentum",
+                       "angular_momentum"}
+  local t = rec.t
+  for i, s in ipairs(seen) do
+    T.equal(t[i], s.t, "t " .. i)
+    for _, name in ipairs(world_names) do
+      T.near(rec:series(name)[i], s[name], 0, name .. " " .. i)
+    end
+    for _, name in ipairs({"position", "orientation", "velocity", "angular_velocity"}) do
+      T.near(rec:series(name, box)[i], s[name], 0, name .. " " .. i)
+    end
+    for _, name in ipairs({"velocity_body", "angular_velocity_body", "angular_momentum_body"}) do
+      T.near(rec:series(name, box)[i], s[name], 1e-13, name .. " " .. i)  -- q:conj():rotate vs the stored orientation's Rᵀ
+    end
+    T.near(rec:series("kinetic_energy", box)[i], s.body_kinetic_energy, 1e-13, "body KE " .. i)
+    T.near(rec:series("angular_momentum", 1)[i], s.body_angular_momentum, 1e-13, "body L " .. i)
+  end
+end)
+
+T.case("every and bodies", function()
+  local w, box, ball = scene()
+  local rec = w:record{every = 3, bodies = {ball}}
+  local positions = {ball.position}
+  for k = 1, 10 do
+    w:step(1 / 60)
+    if k % 3 == 0 then positions[#positions + 1] = ball.position end
+  end
+  T.equal(#rec, 4, "steps 0, 3, 6, 9")
+  local got = rec:series("position")  -- one body recorded: it may be left out
+  for i = 1, 4 do T.near(got[i], positions[i], 0, "position " .. i) end
+  T.near(rec.t[4], 9 / 60, 1e-15, "time of the last sample")
+  T.equal(rec.bodies[1], ball, "rec.bodies")
+  T.equal(rec.every, 3, "rec.every")
+  T.fails(function() rec:series("position", box) end, "not one this recorder records", "other body")
+end)
+
+T.case("stop, and a recorded body that leaves", function()
+  local w, box, ball = scene()
+  local rec = w:record{}
+  w:step(1 / 60, 5)
+  rec:stop()
+  w:step(1 / 60, 5)
+  T.equal(#rec, 6, "nothing after stop")
+  T.equal(rec.recording, false, "recording")
+  T.equal(rec.stop_reason, "stopped by rec:stop()", "reason")
+  local rec2 = w:record{}
+  w:remove(ball)
+  w:step(1 / 60, 2)
+  T.equal(#rec2, 1, "stopped when body 2 left")
+  assert(rec2.stop_reason:find("recorded body 2 left the world", 1, true), rec2.stop_reason)
+  assert(tostring(rec2):find("recorder(2 bodies, 1 samples", 1, true), tostring(rec2))
+end)
+
+T.case("csv: a header and one row per sample, numbers that read back", function()
+  local w, box = scene()
+  local rec = w:record{bodies = {box}}
+  w:step(1 / 60, 3)
+  local path = os.tmpname()
+  rec:csv(path)
+  local rows = {}
+  for line in io.lines(path) do rows[#rows + 1] = line end
+  os.remove(path)
+  T.equal(#rows, 5, "header + 4 samples")
+  local header = {}
+  for name in rows[1]:gmatch("[^,]+") do header[#header + 1] = name end
+  T.equal(header[1], "t", "first column")
+  local column = {}
+  for i, name in ipairs(header) do column[name] = i end
+  for _, name in ipairs({"energy", "angular_momentum.z", "body1.position.y", "body1.orientation.w",
+                         "body1.angular_velocity_body.x", "body1.angular_momentum_body.z"}) do
+    assert(column[name], "column " .. name)
+  end
+  local last = {}
+  for x in rows[5]:gmatch("[^,]+") do last[#last + 1] = tonumber(x) end
+  T.equal(last[column["body1.position.y"]], box.position.y, "position read back exactly")
+  T.equal(last[column.energy], w:energy(), "energy read back exactly")
+  T.fails(function() rec:csv("/dev/full") end,
+    "bad argument #1 to 'recorder:csv' (cannot write '/dev/full': No space left on device)")
+end)
+
+T.case("errors", function()
+  local w, box = scene()
+  local other = world{}
+  local stranger = other:add(body.sphere{mass = 1, radius = 1})
+  T.fails(function() w:record{every = 0} end,
+    "bad argument #1 to 'world:record' (field 'every' must be an integer from 1 to")
+  T.fails(function() w:record{bodies = {stranger}} end,
+    "bad argument #1 to 'world:record' (field 'bodies[1]' must be a body in this world")
+  T.fails(function() w:record{evry = 2} end, "unknown field 'evry'")
+  local rec = w:record{}
+  T.fails(function() rec:series("positon", box) end, "no body series 'positon'")
+  T.fails(function() rec:series("position") end, "a body is needed for 'position' (2 bodies")
+  T.fails(function() rec:series("energy", box) end, "no body series 'energy'")
+  T.fails(function() rec:series("t\0x") end, "NUL")
+  T.fails(function() rec:series("position", 3) end, "body number must be from 1 to 2")
+  T.fails(function() rec.count = 5 end, "bad field 'count' of recorder")
+end)
+
+T.finish()
