@@ -57,10 +57,11 @@ struct ChildJob {
   LimitedState* state;
   int report_fd;
   CheckResult* result;
+  rigidlab::lua::LessonContext* context;  // outlives the state (the ctx points to it)
 };
 
 // Runs every step of the lesson quietly; in protected mode (lua_pcall), so that an error
-// anywhere, even in the lesson table's metamethods, is the lesson's error.
+// anywhere is the lesson's error. The limits cover the whole lesson: loading and every step.
 int check_protected(lua_State* L) {
   ChildJob& job = *static_cast<ChildJob*>(lua_touserdata(L, 1));
   CheckResult& result = *job.result;
@@ -69,26 +70,29 @@ int check_protected(lua_State* L) {
   if (!trusted(*job.path)) rigidlab::lua::apply_sandbox(L);
   lua_pushcfunction(L, [](lua_State*) { return 0; });  // one line per lesson: print is silenced
   lua_setglobal(L, "print");
+  LoadedLesson lesson;
   std::string error;
-  if (!load_lesson(L, *job.path, error)) {
+  if (!load_lesson(L, *job.path, lesson, error)) {
     result.error = job.state->explain(error);
     return 0;
   }
-  const int lesson = lua_gettop(L);
-  if (const std::string id = field_string(L, lesson, "id"); !id.empty()) result.id = id;
+  result.id = lesson.spec.id;
   report_line(job.report_fd, "id " + result.id);
-  rigidlab::lua::LessonTally& tally = rigidlab::lua::push_lesson_context(L, true);
+  rigidlab::lua::LessonContext& context = *job.context;
+  context.tolerance = lesson.spec.tolerance;
+  rigidlab::lua::push_lesson_context(L, context);
   const int ctx = lua_gettop(L);
-  const int count = steps_count(L, lesson);
+  const int count = static_cast<int>(lesson.spec.steps.size());
   for (int number = 1; number <= count && result.error.empty(); ++number) {
     if (!run_step(L, lesson, ctx, number, error))
       result.error = "step " + std::to_string(number) + ": " + job.state->explain(error);
     report_line(job.report_fd,
-                "tally " + std::to_string(tally.passed) + " " + std::to_string(tally.failed));
+                "tally " + std::to_string(context.passed) + " " + std::to_string(context.failed));
   }
-  result.passed = tally.passed;
-  result.failed = tally.failed;
-  result.failures = tally.failures;
+  context.ended = true;
+  result.passed = context.passed;
+  result.failed = context.failed;
+  result.failures = context.failures;
   return 0;
 }
 
@@ -96,17 +100,19 @@ int check_in_child(const fs::path& path, const Limits& limits, int report_fd) {
   const Clock::time_point start = Clock::now();
   CheckResult result;
   result.id = path.stem().string();
+  rigidlab::lua::LessonContext context;  // before the state: the ctx points to it
   {
     LimitedState state(limits, WhenStuck::leave_to_parent);
     if (lua_State* L = state.get()) {
       state.begin_run();
-      ChildJob job{&path, &state, report_fd, &result};
+      ChildJob job{&path, &state, report_fd, &result, &context};
       lua_pushcfunction(L, check_protected);
       lua_pushlightuserdata(L, &job);
       if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
         const char* message = lua_tostring(L, -1);
         result.error = state.explain(message != nullptr ? message : "error");
       }
+      context.ended = true;
       state.end_run();
     } else {
       result.error = "cannot create the Lua state: the memory limit is too small";
@@ -175,9 +181,9 @@ int check_lessons(const std::vector<std::string>& ids_or_files, const Limits& li
   } else {
     for (const std::string& name : ids_or_files) {
       fs::path path;
-      if (!resolve_lesson(name, path)) {
-        std::fprintf(stderr, "rigidlab: no lesson '%s' (rigidlab lessons lists them)\n",
-                     name.c_str());
+      std::string error;
+      if (!resolve_lesson(name, path, error)) {
+        std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
         return exit_usage;
       }
       paths.push_back(path);

@@ -11,24 +11,9 @@
 namespace rigidlab::cli {
 namespace {
 
-// A subcommand's arguments are ids and files; an option there is a usage error, not a lesson
-// named "-x".
-int reject_options(const char* command, const std::vector<std::string>& arguments) {
-  for (const std::string& argument : arguments)
-    if (argument.size() > 1 && argument[0] == '-')
-      return usage_error("unrecognized option '" + argument + "' for '" + command + "'");
-  return 0;
-}
-
 int lessons_command(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return usage_error("'lessons' takes no arguments");
   return list_lessons();
-}
-
-int lesson_command(const std::vector<std::string>& arguments) {
-  if (const int status = reject_options("lesson", arguments)) return status;
-  if (arguments.size() > 1) return usage_error("'lesson' takes one lesson id or file");
-  return run_lesson(arguments.empty() ? "" : arguments[0]);
 }
 
 bool is_regular_file(const char* path) {
@@ -40,7 +25,8 @@ bool is_regular_file(const char* path) {
 
 const Subcommand subcommands[] = {
     {"lessons", "", "list the lessons: id, title, source", lessons_command},
-    {"lesson", "[ID|FILE]", "step through a lesson (no ID: a menu of them)", lesson_command},
+    {"lesson", "[ID|FILE] [LIMITS]", "step through a lesson (no ID: a menu of them)",
+     lesson_command},
     {"check", "[LIMITS] [ID|FILE ...]",
      "run the checks of lessons (default: all) under limits",
      check_command},

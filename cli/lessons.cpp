@@ -10,7 +10,9 @@
 
 #include "cli/check.hpp"
 #include "cli/lesson_files.hpp"
+#include "cli/limit_options.hpp"
 #include "cli/limits.hpp"
+#include "cli/usage.hpp"
 #include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/sandbox.hpp"
@@ -39,100 +41,140 @@ int lesson_width() {
 
 bool interactive() { return isatty(STDIN_FILENO) && isatty(STDOUT_FILENO); }
 
-// Reads one line of the user's answer; false at end of input.
+// Reads one line of the user's answer, however long; false at end of input.
 bool read_answer(std::string& answer) {
-  char buffer[256];
-  if (std::fgets(buffer, sizeof buffer, stdin) == nullptr) return false;
-  answer = buffer;
-  while (!answer.empty() && (answer.back() == '\n' || answer.back() == '\r')) answer.pop_back();
-  return true;
+  answer.clear();
+  for (int c; (c = std::fgetc(stdin)) != EOF;) {
+    if (c == '\n') return true;
+    if (answer.size() < 4096) answer += static_cast<char>(c);  // the rest is read, not kept
+  }
+  return !answer.empty();
 }
 
-void print_step_header(lua_State* L, int lesson, int number, int count) {
-  lua_getfield(L, lesson, "steps");
-  lua_geti(L, -1, number);
-  const int step = lua_gettop(L);
+void print_step_header(const lua::LessonSpec& spec, int number) {
+  const lua::LessonStep& step = spec.steps[number - 1];
   const int width = lesson_width();
-  const std::string title = "-- Step " + std::to_string(number) + "/" + std::to_string(count) +
-                            ": " + field_string(L, step, "title");
+  const std::string title = "-- Step " + std::to_string(number) + "/" +
+                            std::to_string(spec.steps.size()) + ": " + step.title;
   // "-- Step 2/5: title -----" filled to the width; a title too long for one line is wrapped
   const int rule = width - static_cast<int>(display_width(title)) - 1;
   if (rule >= 3)
     std::printf("\n%s %s\n\n", title.c_str(), std::string(rule, '-').c_str());
   else
     std::printf("\n%s\n", lua::fit_words_after("-- ", title.substr(3), width).c_str());
-  std::fputs(lua::fit_paragraphs(field_string(L, step, "text"), "  ", width).c_str(),
-             stdout);
-  const std::string formula = field_string(L, step, "formula");
-  if (!formula.empty()) {
+  std::fputs(lua::fit_paragraphs(step.text, "  ", width).c_str(), stdout);
+  if (!step.formula.empty()) {
     std::printf("\n");
-    std::istringstream lines(formula);
+    std::istringstream lines(step.formula);
     for (std::string line; std::getline(lines, line);) std::printf("      %s\n", line.c_str());
   }
   std::printf("\n");
-  lua_pop(L, 2);
 }
 
 // "id — title" and the source, one document per line (a source lists them split by "; "),
-// each wrapped to the width under its start.
-void print_lesson_heading(lua_State* L, int lesson, int width) {
-  const std::string id = field_string(L, lesson, "id") + " — ";
-  std::fputs(lua::fit_words_after(id, field_string(L, lesson, "title"), width).c_str(), stdout);
-  const std::string source = field_string(L, lesson, "source");
+// each wrapped to the width under its start; a lesson-wide tolerance with its reason.
+void print_lesson_heading(const lua::LessonSpec& spec, int width) {
+  std::fputs(lua::fit_words_after(spec.id + " — ", spec.title, width).c_str(), stdout);
   const char* label = "  source: ";
-  for (size_t start = 0; start <= source.size();) {
-    size_t end = source.find("; ", start);
-    if (end == std::string::npos) end = source.size();
-    const std::string document = source.substr(start, end - start);
+  for (size_t start = 0; start <= spec.source.size();) {
+    size_t end = spec.source.find("; ", start);
+    if (end == std::string::npos) end = spec.source.size();
+    const std::string document = spec.source.substr(start, end - start);
     std::fputs(lua::fit_words_after(label, document, width).c_str(), stdout);
     label = "          ";
     start = end + 2;
   }
+  if (spec.has_tolerance)
+    std::fputs(lua::fit_words_after("  tolerance: ", lua::describe_tolerance(spec.tolerance) +
+                                                         " — " + spec.tolerance.reason, width)
+                   .c_str(),
+               stdout);
 }
 
-// A lesson being stepped through, and how it went.
-struct LessonRun {
-  const fs::path* path;
-  bool loaded = false;
-  bool failed = false;
-  int passed = 0, total = 0;
+// The ctx writes to the terminal.
+class TerminalOutput : public lua::LessonOutput {
+ public:
+  void write(const std::string& lines) override {
+    std::fwrite(lines.data(), 1, lines.size(), stdout);
+    std::fflush(stdout);
+  }
 };
 
-// Untrusted lessons are timed per step (the wait at the prompt is not timed).
-void run_timed_step(lua_State* L, int lesson, int ctx, int number, LessonRun& run) {
-  std::string error;
-  const TimedRun timed(L);
-  if (!run_step(L, lesson, ctx, number, error)) {
-    if (const LimitedState* limits = LimitedState::of(L)) error = limits->explain(error);
-    std::printf("  error: %s\n", error.c_str());
-    run.failed = true;
-  }
-}
+// A lesson being stepped through, and how it went. The context outlives the Lua state (the
+// ctx userdata points to it; see lua/lesson.hpp).
+struct LessonRun {
+  const fs::path* path = nullptr;
+  TerminalOutput output;
+  lua::LessonContext context;
+  bool loaded = false;
+  bool failed = false;
+};
 
-// Steps through the lesson of the LessonRun (argument 1), in protected mode: an error anywhere,
-// even in the lesson table's metamethods, is reported, not fatal.
+// The limits of a lesson's run. Untrusted lessons run under the check limits, counted over the
+// whole lesson: its loading, and every step, but not the wait at the prompt.
+class LessonClock {
+ public:
+  explicit LessonClock(lua_State* L) : state_(LimitedState::of(L)) {
+    if (state_ != nullptr) state_->begin_run();
+  }
+  ~LessonClock() {
+    if (state_ != nullptr && running_) state_->end_run();
+  }
+  LessonClock(const LessonClock&) = delete;
+  LessonClock& operator=(const LessonClock&) = delete;
+  void pause() {
+    if (state_ != nullptr && running_) state_->end_run();
+    running_ = false;
+  }
+  void resume() {
+    if (state_ != nullptr && !running_) state_->resume_run();
+    running_ = true;
+  }
+  bool limit_reached() const { return state_ != nullptr && !state_->limit_hit().empty(); }
+  std::string explain(const std::string& error) const {
+    return state_ != nullptr ? state_->explain(error) : error;
+  }
+
+ private:
+  LimitedState* state_;
+  bool running_ = true;
+};
+
+// Steps through the lesson of the LessonRun (argument 1), in protected mode: an error anywhere
+// is reported, not fatal.
 int present_protected(lua_State* L) {
   LessonRun& run = *static_cast<LessonRun*>(lua_touserdata(L, 1));
   lua_settop(L, 0);
+  LessonClock clock(L);
   lua::open_all(L);
   if (!trusted(*run.path)) lua::apply_sandbox(L);
+  LoadedLesson lesson;
   std::string error;
-  if (!load_lesson(L, *run.path, error)) {
+  if (!load_lesson(L, *run.path, lesson, error)) {
     std::fflush(stdout);
-    std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
+    std::fprintf(stderr, "rigidlab: %s\n", clock.explain(error).c_str());
     run.failed = true;
     return 0;
   }
   run.loaded = true;
-  const int lesson = lua_gettop(L);
-  lua::LessonTally& tally = lua::push_lesson_context(L, false);
+  lua::LessonContext& context = run.context;
+  context.output = &run.output;
+  context.width = lesson_width();
+  context.tolerance = lesson.spec.tolerance;
+  lua::push_lesson_context(L, context);
   const int ctx = lua_gettop(L);
-  tally.width = lesson_width();
-  print_lesson_heading(L, lesson, tally.width);
-  const int count = steps_count(L, lesson);
+  print_lesson_heading(lesson.spec, context.width);
+  const int count = static_cast<int>(lesson.spec.steps.size());
   for (int number = 1; number <= count;) {
-    print_step_header(L, lesson, number, count);
-    run_timed_step(L, lesson, ctx, number, run);
+    print_step_header(lesson.spec, number);
+    if (!run_step(L, lesson, ctx, number, error)) {
+      std::printf("  error: %s\n", clock.explain(error).c_str());
+      run.failed = true;
+      if (clock.limit_reached()) {  // the limits are the whole lesson's: no step would run
+        std::printf("\nThe lesson is stopped: its limits count all of its steps.\n");
+        break;
+      }
+    }
     std::fflush(stdout);
     if (!interactive() || number == count) {
       ++number;
@@ -141,31 +183,37 @@ int present_protected(lua_State* L) {
     std::printf("\n[Enter] next step   b back   q quit > ");
     std::fflush(stdout);
     std::string answer;
-    if (!read_answer(answer) || answer == "q") break;
+    clock.pause();
+    const bool answered = read_answer(answer);
+    clock.resume();
+    if (!answered || answer == "q") break;
     number = answer == "b" ? std::max(1, number - 1) : number + 1;
   }
-  run.passed = tally.passed;
-  run.total = tally.passed + tally.failed;
-  run.failed = run.failed || tally.failed > 0;
+  context.ended = true;
   return 0;
 }
 
 // Steps through one lesson: pauses after each step in a terminal, runs straight through
 // otherwise. Ctrl-C stops the step that is running (its error is shown) and the lesson goes
-// on. Lessons from outside the lesson directory run under the check limits. Returns 0 when
-// every expectation held.
-int present_lesson(const fs::path& path) {
-  const Limits limits = trusted(path) ? Limits{} : default_check_limits();
-  LimitedState state(limits, WhenStuck::exit);
+// on. Lessons from outside the lesson directory run under the check limits (or `limits`, when
+// given). Returns 0 when every expectation held.
+int present_lesson(const fs::path& path, const Limits* limits) {
+  LessonRun run;  // before the state: its context outlives the ctx
+  run.path = &path;
+  const Limits chosen = limits != nullptr ? *limits
+                        : trusted(path)   ? Limits{}
+                                          : default_check_limits();
+  LimitedState state(chosen, WhenStuck::exit);
   lua_State* L = state.get();
   if (L == nullptr) {
     std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
     return 1;
   }
-  LessonRun run{&path};
   lua_pushcfunction(L, present_protected);
   lua_pushlightuserdata(L, &run);
-  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+  const int status = lua_pcall(L, 1, 0, 0);
+  run.context.ended = true;
+  if (status != LUA_OK) {
     const char* message = lua_tostring(L, -1);
     std::fflush(stdout);
     std::fprintf(stderr, "rigidlab: %s\n",
@@ -173,8 +221,10 @@ int present_lesson(const fs::path& path) {
     return 1;
   }
   if (!run.loaded) return 1;
-  std::printf("\n%d of %d checks passed%s\n", run.passed, run.total, run.failed ? "" : " ✓");
-  return run.failed ? 1 : 0;
+  const int total = run.context.passed + run.context.failed;
+  const bool failed = run.failed || run.context.failed > 0;
+  std::printf("\n%d of %d checks passed%s\n", run.context.passed, total, failed ? "" : " ✓");
+  return failed ? 1 : 0;
 }
 
 struct LessonInfo {
@@ -182,12 +232,17 @@ struct LessonInfo {
   std::string id, title, source, error;
 };
 
-// Reads the id, title and source of a loaded lesson (lua_pcall'd: the fields may be anything).
-int read_fields(lua_State* L) {
-  auto& info = *static_cast<LessonInfo*>(lua_touserdata(L, 2));
-  info.id = field_string(L, 1, "id");
-  info.title = field_string(L, 1, "title");
-  info.source = field_string(L, 1, "source");
+// Opens the libraries and loads the lesson of the LessonInfo (argument 1), in protected mode.
+int read_info_protected(lua_State* L) {
+  auto& info = *static_cast<LessonInfo*>(lua_touserdata(L, 1));
+  lua::open_all(L);
+  if (!trusted(info.path)) lua::apply_sandbox(L);
+  LoadedLesson lesson;
+  if (load_lesson(L, info.path, lesson, info.error)) {
+    info.id = lesson.spec.id;
+    info.title = lesson.spec.title;
+    info.source = lesson.spec.source;
+  }
   return 0;
 }
 
@@ -201,18 +256,16 @@ std::vector<LessonInfo> read_lesson_infos() {
     info.id = path.stem().string();
     LimitedState state(default_check_limits(), WhenStuck::exit);
     lua_State* L = state.get();
-    const TimedRun timed(L);
-    lua_pushcfunction(L, [](lua_State* L) {
-      lua::open_all(L);
-      return 0;
-    });
-    if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
-      info.error = "cannot open the libraries: not enough memory";
-    } else if (load_lesson(L, path, info.error)) {
-      lua_pushcfunction(L, read_fields);
-      lua_insert(L, -2);
+    if (L == nullptr) {
+      info.error = "cannot create the Lua state: not enough memory";
+    } else {
+      const TimedRun timed(L);
+      lua_pushcfunction(L, read_info_protected);
       lua_pushlightuserdata(L, &info);
-      if (lua_pcall(L, 2, 0, 0) != LUA_OK) info.error = lua_tostring(L, -1);
+      if (lua_pcall(L, 1, 0, 0) != LUA_OK)
+        info.error = state.explain(lua_tostring(L, -1) ? lua_tostring(L, -1) : "error");
+      else
+        info.error = state.explain(info.error);
     }
     infos.push_back(info);
   }
@@ -265,19 +318,27 @@ int list_lessons() {
     return 1;
   }
   print_lesson_table(infos, false);
-  return 0;
+  const bool all_loaded = std::all_of(infos.begin(), infos.end(),
+                                      [](const LessonInfo& info) { return info.error.empty(); });
+  return all_loaded ? 0 : 1;
 }
 
-int run_lesson(const std::string& id_or_file) {
-  if (!id_or_file.empty()) {
-    fs::path path;
-    if (!resolve_lesson(id_or_file, path)) {
-      std::fprintf(stderr, "rigidlab: no lesson '%s' (rigidlab lessons lists them)\n",
-                   id_or_file.c_str());
-      return 2;
-    }
-    return present_lesson(path);
+namespace {
+
+// The menu's answer: a number in the list, or an id in it (the menu reads no file: an answer
+// of any length is only compared with the ids).
+const LessonInfo* menu_choice(const std::vector<LessonInfo>& infos, const std::string& answer) {
+  if (!answer.empty() && answer.size() <= 9 &&
+      answer.find_first_not_of("0123456789") == std::string::npos) {
+    const size_t number = std::stoul(answer);
+    return number >= 1 && number <= infos.size() ? &infos[number - 1] : nullptr;
   }
+  for (const LessonInfo& info : infos)
+    if (info.id == answer) return &info;
+  return nullptr;
+}
+
+int run_menu() {
   const auto infos = read_lesson_infos();
   if (infos.empty()) {
     std::fprintf(stderr, "rigidlab: no lessons in %s\n", lesson_directory().c_str());
@@ -294,17 +355,47 @@ int run_lesson(const std::string& id_or_file) {
       return 0;
     }
     if (answer.empty()) continue;
-    fs::path path;
-    const int number = std::atoi(answer.c_str());
-    if (number >= 1 && number <= static_cast<int>(infos.size()))
-      path = infos[number - 1].path;
-    else if (!resolve_lesson(answer, path)) {
-      std::printf("no lesson '%s'\n\n", answer.c_str());
+    const LessonInfo* choice = menu_choice(infos, answer);
+    if (choice == nullptr) {
+      std::printf("no lesson '%s'\n\n", lua::truncate_to_width(answer, 60).c_str());
       continue;
     }
-    present_lesson(path);
+    present_lesson(choice->path, nullptr);
     std::printf("\n");
   }
+}
+
+}  // namespace
+
+int lesson_command(const std::vector<std::string>& arguments) {
+  Limits limits = default_check_limits();
+  bool limits_given = false;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    std::string error;
+    if (take_limit_option(arguments, i, limits, error)) {
+      if (!error.empty()) return usage_error(error);
+      limits_given = true;
+    } else if (arguments[i] == "--") {
+      names.insert(names.end(), arguments.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                   arguments.end());
+      break;
+    } else if (arguments[i].size() > 1 && arguments[i][0] == '-') {
+      return usage_error("unrecognized option '" + lua::truncate_to_width(arguments[i], 60) +
+                         "' for 'lesson'");
+    } else {
+      names.push_back(arguments[i]);
+    }
+  }
+  if (names.size() > 1) return usage_error("'lesson' takes one lesson id or file");
+  if (names.empty()) return run_menu();
+  fs::path path;
+  std::string error;
+  if (!resolve_lesson(names[0], path, error)) {
+    std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
+    return exit_usage;
+  }
+  return present_lesson(path, limits_given ? &limits : nullptr);
 }
 
 }  // namespace rigidlab::cli

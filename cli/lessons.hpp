@@ -4,10 +4,14 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rigidlab::cli {
 
 int list_lessons();
-int run_lesson(const std::string& id_or_file);  // empty: the menu
+// `rigidlab lesson [LIMITS] [ID|FILE]`: steps through one lesson, or offers the menu. LIMITS
+// (the options of `check`) apply to any lesson; without them a lesson from outside the lesson
+// directory runs under the check limits, counted over the whole lesson.
+int lesson_command(const std::vector<std::string>& arguments);
 
 }  // namespace rigidlab::cli

@@ -1,5 +1,6 @@
 #include "cli/limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -72,11 +73,20 @@ void LimitedState::begin_run() {
   instructions_ = 0;
   hit_ = Hit::none;
   deadline_passed_ = false;
+  seconds_left_ = limits_.timeout_seconds;
+  run_start_ = std::chrono::steady_clock::now();
   if (watchdog_) watchdog_->arm(limits_.timeout_seconds);
 }
 
 void LimitedState::end_run() {
   if (watchdog_) watchdog_->disarm();
+  seconds_left_ -= std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_)
+                       .count();
+}
+
+void LimitedState::resume_run() {
+  run_start_ = std::chrono::steady_clock::now();
+  if (watchdog_) watchdog_->arm(std::max(seconds_left_, 0.0));
 }
 
 std::string LimitedState::limit_hit() const {

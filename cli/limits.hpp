@@ -16,6 +16,7 @@
 #include <lua.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -56,6 +57,9 @@ class LimitedState {
   // instruction count. end_run: it has ended, the clock stops (the REPL's prompt is not timed).
   void begin_run();
   void end_run();
+  // Goes on with the run that end_run paused (a lesson waiting at its prompt between steps):
+  // the clock with the time that was left, the instruction count where it was.
+  void resume_run();
   // Which limit stopped the code, in words ("the memory limit (64 MB)"), or "" if none.
   std::string limit_hit() const;
   // The message to show for an error `message` of the code: "stopped: the memory limit
@@ -79,6 +83,8 @@ class LimitedState {
   long long instructions_ = 0;
   Hit hit_ = Hit::none;
   std::atomic<bool> deadline_passed_{false};
+  double seconds_left_ = 0.0;  // of the time limit, for resume_run
+  std::chrono::steady_clock::time_point run_start_;
   std::unique_ptr<Watchdog> watchdog_;  // when there is a time limit
 };
 

@@ -117,7 +117,7 @@ struct TaggedType {
 };
 constexpr TaggedType tagged_types[] = {
     {vec3_tag, "vec3"}, {mat3_tag, "mat3"}, {quat_tag, "quat"},
-    {body_tag, "body"}, {world_tag, "world"}};
+    {body_tag, "body"}, {world_tag, "world"}, {lesson_context_tag, "lesson context"}};
 
 // The rigidlab type whose tag starts the userdata at `index`, or nullptr.
 const char* tagged_type_name(lua_State* L, int index) {

@@ -240,6 +240,7 @@ inline constexpr std::uint64_t mat3_tag = 0x6d33'7269'6769'646cULL;
 inline constexpr std::uint64_t quat_tag = 0x7174'7269'6769'646cULL;
 inline constexpr std::uint64_t body_tag = 0x626f'6479'7269'646cULL;   // lua/body.cpp
 inline constexpr std::uint64_t world_tag = 0x776f'726c'6472'6c62ULL;  // lua/world.cpp
+inline constexpr std::uint64_t lesson_context_tag = 0x6374'7872'6967'646cULL;  // lua/lesson.cpp
 
 template <class T>
 T* test_tagged(lua_State* L, int index, std::uint64_t tag) {

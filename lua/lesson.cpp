@@ -1,13 +1,12 @@
-// lesson{...} and ctx:show / ctx:expect / ctx:table. See lua/lesson.hpp and API.md "Lessons
-// and checks". A failed expectation is recorded, not raised: a lesson shows every number,
-// right or wrong, and the checker counts the failures.
+// lesson{...} and the ctx of a lesson run: ctx:show / expect / expect_range / table / say. See
+// lua/lesson.hpp and API.md "Lessons and checks". A failed expectation is recorded, not raised:
+// a lesson shows every number, right or wrong, and the checker counts the failures.
 #include "lua/lesson.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <new>
 
 #include "lua/binding.hpp"
 #include "lua/modules.hpp"
@@ -18,16 +17,23 @@ namespace {
 
 const char lesson_context_key = 0;
 
-void write(const LessonTally& tally, const std::string& text) {
-  if (tally.quiet) return;
-  std::fwrite(text.data(), 1, text.size(), stdout);
-  std::fflush(stdout);
+// The ctx userdata holds only a pointer to the runner's LessonContext, behind a tag (see
+// Tagged in lua/binding.hpp): nothing else can pass for a ctx, and __gc only clears the
+// pointer, so a ctx finalised once, twice or used from a finaliser frees nothing.
+using ContextBox = LessonContext*;
+
+void write(LessonContext& context, const std::string& text) {
+  if (context.output != nullptr) context.output->write(text);
 }
 
-LessonTally& check_context(lua_State* L, int arg) {
-  LessonTally* tally = test_lesson_context(L, arg);
-  if (tally == nullptr) type_error(L, arg, "lesson context");
-  return *tally;
+LessonContext& check_context(lua_State* L, int arg) {
+  ContextBox* box = test_tagged<ContextBox>(L, arg, lesson_context_tag);
+  if (box == nullptr) type_error(L, arg, "lesson context");
+  if (*box == nullptr)
+    arg_error(L, arg, "the lesson context was garbage-collected (it is used from a finaliser)");
+  if ((*box)->ended)
+    arg_error(L, arg, "the lesson has ended: its ctx can no longer show or check anything");
+  return **box;
 }
 
 // luaL_checkstring and luaL_checkany name the function as Lua saw it ('show'); these name it
@@ -78,66 +84,165 @@ std::string fit_value(const std::string& prefix, const std::string& value, size_
   return text;
 }
 
-// The numbers of a value that ctx:expect can compare: a number, vec3, quat, mat3 or a table of
-// numbers. Returns false for anything else.
-bool components(lua_State* L, int index, std::vector<double>& out, std::string& kind) {
-  out.clear();
-  if (lua_type(L, index) == LUA_TNUMBER) {
-    kind = "number";
-    out.push_back(lua_tonumber(L, index));
-  } else if (const Vec3* v = test_vec3(L, index)) {
-    kind = "vec3";
-    out.assign(v->data(), v->data() + 3);
-  } else if (const Quat* q = test_quat(L, index)) {
-    kind = "quat";
-    out = {q->w(), q->x(), q->y(), q->z()};
-  } else if (const Mat3* m = test_mat3(L, index)) {
-    kind = "mat3";
-    for (int k = 0; k < 9; ++k) out.push_back((*m)(k / 3, k % 3));
-  } else if (lua_type(L, index) == LUA_TTABLE) {
-    kind = "table";
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, index));
-    for (lua_Integer i = 1; i <= n; ++i) {
-      const bool is_number = lua_rawgeti(L, index, i) == LUA_TNUMBER;
-      out.push_back(lua_tonumber(L, -1));
-      lua_pop(L, 1);
-      if (!is_number) return false;
+// ---- tolerances ------------------------------------------------------------------------------
+
+// Reads {abs =, rel =, reason =} at `index` raw (no metamethod runs) into `tolerance`: a
+// field left out is 0 (the reason ""). False with the reason in `error` for anything else.
+bool read_tolerance_table(lua_State* L, int index, Tolerance& tolerance, std::string& error) {
+  index = lua_absindex(L, index);
+  tolerance = Tolerance{0.0, 0.0, ""};
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    lua_pop(L, 1);
+    const char* key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : nullptr;
+    const bool known = key != nullptr && (std::strcmp(key, "abs") == 0 ||
+                                          std::strcmp(key, "rel") == 0 ||
+                                          std::strcmp(key, "reason") == 0);
+    if (!known) {
+      error = std::string("unknown field '") + push_key_name(L, -1) +
+              "' (fields are: abs, rel, reason)";
+      lua_pop(L, 2);
+      return false;
     }
-  } else {
-    kind = value_type_name(L, index);
-    return false;
   }
+  for (const char* name : {"abs", "rel"}) {
+    lua_pushstring(L, name);
+    const int type = lua_rawget(L, index);
+    const double x = lua_tonumber(L, -1);
+    const bool good = type == LUA_TNIL || (type == LUA_TNUMBER && x >= 0.0 && std::isfinite(x));
+    if (!good)
+      error = std::string("field '") + name + "' must be a finite number >= 0, got " +
+              (type == LUA_TNUMBER ? format_number(x) : value_type_name(L, -1));
+    lua_pop(L, 1);
+    if (!good) return false;
+    (name[0] == 'a' ? tolerance.absolute : tolerance.relative) = x;
+  }
+  lua_pushliteral(L, "reason");
+  const int type = lua_rawget(L, index);
+  if (type == LUA_TSTRING) tolerance.reason = lua_tostring(L, -1);
+  else if (type != LUA_TNIL) error = std::string("field 'reason' must be a string, got ") +
+                                     value_type_name(L, -1);
+  lua_pop(L, 1);
+  return error.empty();
+}
+
+// The tolerance argument of ctx:expect: a number is relative to max(1, |want|); a table
+// {abs =, rel =, reason =} passes when the difference is within either bound; none: the
+// lesson's.
+Tolerance check_tolerance(lua_State* L, int arg, const LessonContext& context) {
+  if (lua_isnoneornil(L, arg)) return context.tolerance;
+  if (lua_type(L, arg) == LUA_TNUMBER) return Tolerance{0.0, check_nonnegative(L, arg, "tolerance"), ""};
+  if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, "number or {abs =, rel =, reason =}");
+  Tolerance tolerance;
+  std::string error;
+  if (!read_tolerance_table(L, arg, tolerance, error)) arg_error(L, arg, "%s", error.c_str());
+  return tolerance;
+}
+
+// ---- checks ----------------------------------------------------------------------------------
+
+// Records a check and writes it: "  ✓ label: got X, want Y" on one line when it fits, else
+// the label (and the detail) on a line, got and want lined up below it. `problem` is "" when
+// the check passed; `note` (the tolerance and its reason) is shown on a failure, and on a
+// pass when the tolerance has a reason.
+bool report_check(lua_State* L, LessonContext& context, const std::string& label,
+                  const std::string& got, const std::string& want, const std::string& problem,
+                  const std::string& note) {
+  (void)L;
+  const bool ok = problem.empty();
+  const std::string mark = ok ? "  ✓ " : "  ✗ ";
+  std::string detail;
+  if (!ok) detail = " (" + problem + (note.empty() ? "" : "; " + note) + ")";
+  else if (!note.empty()) detail = " (" + note + ")";
+  const std::string one_line = label + ": got " + got + ", want " + want + detail;
+  if (ok) {
+    ++context.passed;
+  } else {
+    ++context.failed;
+    context.failures.push_back(one_line);
+  }
+  if (display_width(mark + one_line) <= static_cast<size_t>(context.width)) {
+    write(context, mark + one_line + "\n");
+  } else {  // label, then got and want on lines of their own, aligned
+    write(context, fit_words_after(mark, label + detail, context.width) +
+                       fit_value("      got  ", got, context.width) + "\n" +
+                       fit_value("      want ", want, context.width) + "\n");
+  }
+  return ok;
+}
+
+// What a check says about its tolerance: on a failure by a number ("off by"), the tolerance;
+// the reason of a tolerance given to this check, on a pass too ("tolerance rel 0.001: the
+// document gives 4 digits"). A lesson-wide tolerance's reason is in the lesson's heading.
+std::string tolerance_note(const Tolerance& tolerance, bool given, const std::string& problem) {
+  const bool numeric = problem.find("off by") != std::string::npos;
+  const bool has_reason = given && !tolerance.reason.empty();
+  if (!numeric && !(problem.empty() && has_reason)) return "";
+  const std::string note = "tolerance " + describe_tolerance(tolerance);
+  return has_reason ? note + ": " + tolerance.reason : note;
+}
+
+// ctx:expect(label, got, want [, tol]) -> true when got agrees with want
+int context_expect(lua_State* L) {
+  LessonContext& context = check_context(L, 1);
+  const std::string label = check_text(L, 2);
+  check_value(L, 3);
+  check_value(L, 4);
+  check_no_extra_args(L, 5);
+  const Tolerance tolerance = check_tolerance(L, 5, context);
+  const std::string problem = compare_values(L, 3, 4, tolerance);
+  const bool ok = report_check(L, context, label, format_value(L, 3, "", true),
+                               format_value(L, 4, "", true), problem,
+                               tolerance_note(tolerance, !lua_isnoneornil(L, 5), problem));
+  lua_pushboolean(L, ok);
+  return 1;
+}
+
+// A bound of ctx:expect_range: a number (not nan) or nil.
+bool check_bound(lua_State* L, int arg, double& bound) {
+  if (lua_isnoneornil(L, arg)) return false;
+  if (lua_type(L, arg) != LUA_TNUMBER) type_error(L, arg, "number or nil");
+  bound = lua_tonumber(L, arg);
+  if (std::isnan(bound)) arg_error(L, arg, "a bound must be a number, got nan");
   return true;
 }
 
-// The tolerance argument: a number is relative to max(1, |want|); {abs =, rel =} passes when
-// the difference is within either bound.
-void read_tolerance(lua_State* L, int arg, double& absolute, double& relative) {
-  absolute = 0.0;
-  relative = 1e-9;
-  if (lua_isnoneornil(L, arg)) return;
-  if (lua_type(L, arg) == LUA_TNUMBER) {
-    relative = check_nonnegative(L, arg, "tolerance");
-    return;
+// ctx:expect_range(label, got, low, high) -> true when low <= got <= high (a nil bound is
+// no bound)
+int context_expect_range(lua_State* L) {
+  LessonContext& context = check_context(L, 1);
+  const std::string label = check_text(L, 2);
+  check_value(L, 3);
+  check_no_extra_args(L, 5);
+  double low = 0.0, high = 0.0;
+  const bool has_low = check_bound(L, 4, low), has_high = check_bound(L, 5, high);
+  if (!has_low && !has_high) arg_error(L, 4, "a bound expected: low and high are both nil");
+  if (has_low && has_high && !(low <= high))
+    arg_error(L, 5, "high must be >= low, got low %s and high %s", lesson_number(low).c_str(),
+              lesson_number(high).c_str());
+  std::string want;
+  if (has_low && has_high) want = "in [" + lesson_number(low) + ", " + lesson_number(high) + "]";
+  else if (has_low) want = "≥ " + lesson_number(low);
+  else want = "≤ " + lesson_number(high);
+  std::string problem;
+  if (lua_type(L, 3) != LUA_TNUMBER) {
+    problem = "got " + a_type_name(L, 3) + ", want a number";
+  } else {
+    const double got = lua_tonumber(L, 3);
+    if (std::isnan(got)) problem = "got nan";
+    else if (has_low && got < low) problem = "below the low bound by " + format_number(low - got);
+    else if (has_high && got > high) problem = "above the high bound by " + format_number(got - high);
   }
-  if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, "number or {abs =, rel =}");
-  static const char* const fields[] = {"abs", "rel", nullptr};
-  check_fields(L, arg, fields);
-  absolute = field_finite(L, arg, "abs", 0.0, false);
-  relative = field_finite(L, arg, "rel", 0.0, false);
-  if (absolute < 0.0 || relative < 0.0) arg_error(L, arg, "tolerances must be >= 0");
+  const bool ok = report_check(L, context, label, format_value(L, 3, "", true), want, problem, "");
+  lua_pushboolean(L, ok);
+  return 1;
 }
 
-std::string describe_tolerance(double absolute, double relative) {
-  std::string text;
-  if (relative > 0.0) text += "rel " + format_number(relative);
-  if (absolute > 0.0) text += (text.empty() ? "abs " : ", abs ") + format_number(absolute);
-  return text.empty() ? "exact" : text;
-}
+// ---- showing ---------------------------------------------------------------------------------
 
 // ctx:show(label, value)
 int context_show(lua_State* L) {
-  LessonTally& tally = check_context(L, 1);
+  LessonContext& context = check_context(L, 1);
   const char* label = check_text(L, 2);
   check_value(L, 3);
   check_no_extra_args(L, 3);
@@ -149,67 +254,20 @@ int context_show(lua_State* L) {
       const size_t end = rows.find("\n", start + 1);
       const size_t length = end == std::string::npos ? end : end - start - 5;
       const std::string row = rows.substr(start + 5, length);  // past "\n    "
-      text += "\n" + fit_value("    ", row, tally.width);
+      text += "\n" + fit_value("    ", row, context.width);
       start = end;
     }
-    write(tally, text + "\n");
-  } else
-    write(tally, fit_value(prefix + " ", format_value(L, 3, ""), tally.width) + "\n");
-  return 0;
-}
-
-// ctx:expect(label, got, want [, tol]) -> true when within tolerance
-int context_expect(lua_State* L) {
-  LessonTally& tally = check_context(L, 1);
-  const char* label = check_text(L, 2);
-  check_value(L, 3);
-  check_value(L, 4);
-  check_no_extra_args(L, 5);
-  double absolute, relative;
-  read_tolerance(L, 5, absolute, relative);
-  std::vector<double> got, want;
-  std::string got_kind, want_kind;
-  const bool comparable = components(L, 3, got, got_kind) && components(L, 4, want, want_kind);
-  std::string problem;
-  if (!comparable || got_kind != want_kind || got.size() != want.size()) {
-    problem = "got a " + got_kind + ", want a " + want_kind;
+    write(context, text + "\n");
   } else {
-    for (size_t i = 0; i < got.size() && problem.empty(); ++i) {
-      const double difference = std::fabs(got[i] - want[i]);
-      const double bound = std::max(absolute, relative * std::max(1.0, std::fabs(want[i])));
-      if (!(difference <= bound))  // NaN fails
-        problem = got.size() > 1 ? "component " + std::to_string(i + 1) + " off by " +
-                                       format_number(difference)
-                                 : "off by " + format_number(difference);
-    }
+    write(context, fit_value(prefix + " ", format_value(L, 3, ""), context.width) + "\n");
   }
-  const std::string got_text = format_value(L, 3, "");
-  const std::string want_text = format_value(L, 4, "");
-  const std::string mark = problem.empty() ? "  ✓ " : "  ✗ ";
-  const std::string detail =
-      problem.empty() ? "" : " (" + problem + "; tolerance " +
-                                 describe_tolerance(absolute, relative) + ")";
-  const std::string one_line =
-      std::string(label) + ": got " + got_text + ", want " + want_text + detail;
-  if (problem.empty())
-    ++tally.passed;
-  else
-    ++tally.failed, tally.failures.push_back(one_line);
-  if (display_width(mark + one_line) <= static_cast<size_t>(tally.width)) {
-    write(tally, mark + one_line + "\n");
-  } else {  // label, then got and want on lines of their own, aligned
-    write(tally, fit_words_after(mark, label + detail, tally.width) +
-                     fit_value("      got  ", got_text, tally.width) + "\n" +
-                     fit_value("      want ", want_text, tally.width) + "\n");
-  }
-  lua_pushboolean(L, problem.empty());
-  return 1;
+  return 0;
 }
 
 // ctx:table(columns, rows): an aligned table; columns a list of headings, rows a list of lists
 // of numbers or strings.
 int context_table(lua_State* L) {
-  LessonTally& tally = check_context(L, 1);
+  LessonContext& context = check_context(L, 1);
   if (lua_type(L, 2) != LUA_TTABLE) type_error(L, 2, "table");
   if (lua_type(L, 3) != LUA_TTABLE) type_error(L, 3, "table");
   check_no_extra_args(L, 3);
@@ -250,101 +308,187 @@ int context_table(lua_State* L) {
       text += "\n";
     }
   }
-  write(tally, text);
+  write(context, text);
   return 0;
 }
 
 // ctx:say(text): a line of explanation printed between values.
 int context_say(lua_State* L) {
-  LessonTally& tally = check_context(L, 1);
+  LessonContext& context = check_context(L, 1);
   const char* text = check_text(L, 2);
   check_no_extra_args(L, 2);
   std::string out;
   for (const char* line = text;;) {  // each line of the text wrapped on its own
     const char* end = std::strchr(line, '\n');
     const std::string part = end ? std::string(line, end) : std::string(line);
-    out += part.empty() ? "\n" : fit_words(part, "  ", tally.width);
+    out += part.empty() ? "\n" : fit_words(part, "  ", context.width);
     if (end == nullptr) break;
     line = end + 1;
   }
-  write(tally, out);
+  write(context, out);
   return 0;
 }
 
 int context_gc(lua_State* L) {
-  if (LessonTally* tally = test_lesson_context(L, 1)) tally->~LessonTally();
+  if (ContextBox* box = test_tagged<ContextBox>(L, 1, lesson_context_tag)) *box = nullptr;
   return 0;
 }
 
 int context_tostring(lua_State* L) {
-  LessonTally& tally = check_context(L, 1);
-  lua_pushfstring(L, "lesson context (%d passed, %d failed)", tally.passed, tally.failed);
+  ContextBox* box = test_tagged<ContextBox>(L, 1, lesson_context_tag);
+  if (box == nullptr) type_error(L, 1, "lesson context");
+  if (*box == nullptr) lua_pushliteral(L, "lesson context (garbage-collected)");
+  else lua_pushfstring(L, "lesson context (%d passed, %d failed%s)", (*box)->passed,
+                       (*box)->failed, (*box)->ended ? "; its lesson has ended" : "");
   return 1;
 }
 
-// Validates one step table at the top of the stack: {title =, text =, formula =, run =}.
-void check_step(lua_State* L, int arg, int number) {
-  const int step = lua_gettop(L);
-  if (lua_type(L, step) != LUA_TTABLE)
-    arg_error(L, arg, "steps[%d] must be a table, got %s", number, value_type_name(L, step));
-  static const char* const allowed[] = {"title", "text", "formula", "run", nullptr};
+// ---- lesson{} --------------------------------------------------------------------------------
+
+// Raw field `name` of the table at `table`, pushed; returns its type.
+int raw_field(lua_State* L, int table, const char* name) {
+  lua_pushstring(L, name);
+  return lua_rawget(L, table);
+}
+
+// The first key of the table at `table` that is not in `allowed` (nullptr-terminated), as a
+// message; "" when there is none.
+std::string unknown_field(lua_State* L, int table, const char* const* allowed) {
   lua_pushnil(L);
-  while (lua_next(L, step) != 0) {
+  while (lua_next(L, table) != 0) {
     lua_pop(L, 1);
     bool known = false;
     for (const char* const* a = allowed; *a && !known; ++a)
       known = lua_type(L, -1) == LUA_TSTRING && std::strcmp(*a, lua_tostring(L, -1)) == 0;
-    if (!known)
-      arg_error(L, arg, "steps[%d]: unknown field '%s' (fields are: title, text, formula, run)",
-                number, luaL_tolstring(L, -1, nullptr));
+    if (known) continue;
+    std::string message = std::string("unknown field '") + push_key_name(L, -1) + "' (fields are: ";
+    for (const char* const* a = allowed; *a; ++a) message += (a == allowed ? "" : ", ") + std::string(*a);
+    lua_pop(L, 2);
+    return message + ")";
   }
-  const struct { const char* name; int type; bool required; } fields[] = {
-      {"title", LUA_TSTRING, true}, {"text", LUA_TSTRING, true},
-      {"formula", LUA_TSTRING, false}, {"run", LUA_TFUNCTION, false}};
-  for (const auto& f : fields) {
-    const int type = lua_getfield(L, step, f.name);
-    if (type != f.type && (f.required || type != LUA_TNIL))
-      arg_error(L, arg, "steps[%d]: field '%s' must be a %s, got %s", number, f.name,
-                lua_typename(L, f.type), value_type_name(L, -1));
-    lua_pop(L, 1);
-  }
+  return "";
 }
 
-// lesson{id =, title =, source =, steps = {...}} -> the same table, validated.
+// Field `name` of the table at `table` into `out`: a string (non-empty when `non_empty`).
+bool read_text(lua_State* L, int table, const char* name, bool required, bool non_empty,
+               std::string& out, std::string& error) {
+  const int type = raw_field(L, table, name);
+  if (type == LUA_TSTRING && (!non_empty || lua_rawlen(L, -1) > 0)) {
+    size_t length = 0;
+    const char* text = lua_tolstring(L, -1, &length);
+    out.assign(text, length);
+  } else if (type != LUA_TNIL || required) {
+    error = std::string("field '") + name + "' must be a " + (non_empty ? "non-empty " : "") +
+            "string, got " + value_type_name(L, -1);
+  }
+  lua_pop(L, 1);
+  return error.empty();
+}
+
+// Step `number`, the table at the top of the stack, into `step`; its run function (or false)
+// becomes runs[number] of the table at `runs`.
+bool read_step(lua_State* L, int number, int runs, LessonStep& step, std::string& error) {
+  const int table = lua_gettop(L);
+  const std::string where = "steps[" + std::to_string(number) + "]";
+  if (lua_type(L, table) != LUA_TTABLE) {
+    error = where + " must be a table, got " + value_type_name(L, table);
+    return false;
+  }
+  static const char* const allowed[] = {"title", "text", "formula", "run", nullptr};
+  error = unknown_field(L, table, allowed);
+  if (error.empty()) read_text(L, table, "title", true, false, step.title, error);
+  if (error.empty()) read_text(L, table, "text", true, false, step.text, error);
+  if (error.empty()) read_text(L, table, "formula", false, false, step.formula, error);
+  if (!error.empty()) {
+    error = where + ": " + error;
+    return false;
+  }
+  const int type = raw_field(L, table, "run");
+  if (type != LUA_TFUNCTION && type != LUA_TNIL) {
+    error = where + ": field 'run' must be a function, got " + value_type_name(L, -1);
+    lua_pop(L, 1);
+    return false;
+  }
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    lua_pushboolean(L, false);
+  }
+  lua_rawseti(L, runs, number);
+  return true;
+}
+
+// The steps list of the lesson at `lesson` into `spec`, their run functions into `runs`.
+bool read_steps(lua_State* L, int lesson, int runs, LessonSpec& spec, std::string& error) {
+  const char* const message = "field 'steps' must be a non-empty list of steps";
+  if (raw_field(L, lesson, "steps") != LUA_TTABLE || lua_rawlen(L, -1) == 0) {
+    error = message;
+    lua_pop(L, 1);
+    return false;
+  }
+  const int steps = lua_gettop(L);
+  const lua_Integer count = static_cast<lua_Integer>(lua_rawlen(L, steps));
+  lua_Integer keys = 0;  // a list has exactly the keys 1..count: no holes, no named field
+  lua_pushnil(L);
+  while (lua_next(L, steps) != 0) {
+    lua_Integer key = 0;
+    lua_pop(L, 1);
+    if (!to_integer(L, -1, key) || key < 1 || key > count) {
+      error = std::string(message) + ": unexpected key '" + push_key_name(L, -1) + "'";
+      lua_settop(L, steps - 1);
+      return false;
+    }
+    ++keys;
+  }
+  for (lua_Integer i = 1; i <= count && error.empty(); ++i) {
+    lua_rawgeti(L, steps, i);
+    spec.steps.emplace_back();
+    read_step(L, static_cast<int>(i), runs, spec.steps.back(), error);
+    lua_settop(L, steps);
+  }
+  lua_pop(L, 1);
+  return error.empty() && keys == count;
+}
+
+// lesson{tolerance = {rel =, abs =, reason =}}: a lesson-wide tolerance must say why.
+bool read_lesson_tolerance(lua_State* L, int lesson, LessonSpec& spec, std::string& error) {
+  const int type = raw_field(L, lesson, "tolerance");
+  if (type == LUA_TTABLE) {
+    if (read_tolerance_table(L, -1, spec.tolerance, error) && spec.tolerance.reason.empty())
+      error = "needs a reason, printed with the lesson: tolerance = {rel = 1e-6, reason = "
+              "\"the document gives 7 digits\"}";
+    spec.has_tolerance = true;
+  } else if (type != LUA_TNIL) {
+    error = std::string("must be a table {rel =, abs =, reason =}, got ") + value_type_name(L, -1);
+  }
+  lua_pop(L, 1);
+  if (!error.empty()) error = "field 'tolerance': " + error;
+  return error.empty();
+}
+
+// lesson{id =, title =, source =, steps = {...}, tolerance =} -> the same table, validated.
 int lesson_new(lua_State* L) {
   if (lua_type(L, 1) != LUA_TTABLE) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  static const char* const allowed[] = {"id", "title", "source", "steps", nullptr};
-  check_fields(L, 1, allowed);
-  for (const char* name : {"id", "title", "source"}) {
-    if (lua_getfield(L, 1, name) != LUA_TSTRING || lua_rawlen(L, -1) == 0)
-      arg_error(L, 1, "field '%s' must be a non-empty string, got %s", name, value_type_name(L, -1));
-    lua_pop(L, 1);
-  }
-  lua_getfield(L, 1, "id");
-  for (const char* c = lua_tostring(L, -1); *c; ++c)
-    if (!((*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || *c == '-'))
-      arg_error(L, 1, "field 'id' may hold only a-z, 0-9 and '-', got '%s'", lua_tostring(L, -1));
-  lua_pop(L, 1);
-  if (lua_getfield(L, 1, "steps") != LUA_TTABLE || lua_rawlen(L, -1) == 0)
-    arg_error(L, 1, "field 'steps' must be a non-empty list of steps");
-  const lua_Integer count = static_cast<lua_Integer>(lua_rawlen(L, -1));
-  for (lua_Integer i = 1; i <= count; ++i) {
-    lua_rawgeti(L, -1, i);
-    check_step(L, 1, static_cast<int>(i));
-    lua_pop(L, 1);
-  }
+  LessonSpec spec;
+  std::string error;
+  if (!read_lesson(L, 1, spec, error)) arg_error(L, 1, "%s", error.c_str());
   lua_settop(L, 1);
   return 1;
 }
 
 const Entry context_methods[] = {
     {"show", context_show, "ctx:show", "ctx:show(label, value)",
-     "Prints a labelled value: a number, vec3, mat3, quat, string or table of numbers."},
+     "Prints a labelled value: a number, vec3, mat3, quat, string or table."},
     {"expect", context_expect, "ctx:expect", "ctx:expect(label, got, want [, tol]) -> ok",
-     "Checks got against the document's value and prints got, want and ✓ or ✗. tol is relative\n"
-     "to max(1, |want|) (default 1e-9), or {abs =, rel =}. Works component-wise for vec3, mat3,\n"
-     "quat and tables of numbers. A failure is recorded (the check fails), not raised."},
+     "Checks got against the document's value and prints got, want and ✓ or ✗ (with the\n"
+     "reason: the first key or component that differs). Numbers agree within tol: relative to\n"
+     "max(1, |want|) (default 1e-9, or the lesson's tolerance), or {abs =, rel =, reason =}\n"
+     "(the reason is printed); ±inf equal themselves, nan nothing. vec3, mat3 and quat are\n"
+     "compared component-wise, strings, booleans and nil exactly, tables deeply (every key).\n"
+     "A failure is recorded (the check fails), not raised."},
+    {"expect_range", context_expect_range, "ctx:expect_range",
+     "ctx:expect_range(label, got, low, high) -> ok",
+     "Checks low <= got <= high and prints ✓ or ✗; either bound may be nil (no bound)."},
     {"table", context_table, "ctx:table", "ctx:table(columns, rows)",
      "Prints an aligned table: columns a list of headings, rows a list of lists."},
     {"say", context_say, "ctx:say", "ctx:say(text)", "Prints a line of explanation."},
@@ -356,20 +500,21 @@ const Entry context_metamethods[] = {
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry functions[] = {
-    {"lesson", lesson_new, "lesson", "lesson{id =, title =, source =, steps = {...}} -> lesson",
+    {"lesson", lesson_new, "lesson",
+     "lesson{id =, title =, source =, steps = {...} [, tolerance =]} -> lesson",
      "Declares a lesson (a file in lessons/ returns one). Each step is\n"
      "{title =, text =, formula =, run = function(ctx) ... end}: text explains in words,\n"
      "formula (optional) shows the document's formula, run computes and calls ctx:show,\n"
-     "ctx:expect, ctx:table, ctx:say. `rigidlab lesson ID` steps through it,\n"
-     "`rigidlab check` runs every expectation."},
+     "ctx:expect, ctx:expect_range, ctx:table, ctx:say. tolerance = {rel =, abs =, reason =}\n"
+     "sets the default of every ctx:expect, with the reason shown. `rigidlab lesson ID`\n"
+     "steps through it, `rigidlab check` runs every expectation."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace
 
-LessonTally& push_lesson_context(lua_State* L, bool quiet) {
-  void* memory = lua_newuserdatauv(L, sizeof(LessonTally), 0);
-  LessonTally* tally = new (memory) LessonTally();
-  tally->quiet = quiet;
+void push_lesson_context(lua_State* L, LessonContext& context) {
+  void* memory = lua_newuserdatauv(L, sizeof(Tagged<ContextBox>), 0);
+  new (memory) Tagged<ContextBox>{lesson_context_tag, &context};
   if (lua_rawgetp(L, LUA_REGISTRYINDEX, &lesson_context_key) != LUA_TTABLE) {
     lua_pop(L, 1);
     new_metatable(L, "lesson context", &lesson_context_key);
@@ -379,64 +524,31 @@ LessonTally& push_lesson_context(lua_State* L, bool quiet) {
     lua_setfield(L, -2, "__index");
   }
   lua_setmetatable(L, -2);
-  return *tally;
 }
 
-LessonTally* test_lesson_context(lua_State* L, int index) {
-  return has_metatable(L, index, &lesson_context_key)
-             ? static_cast<LessonTally*>(lua_touserdata(L, index))
-             : nullptr;
+LessonContext* test_lesson_context(lua_State* L, int index) {
+  ContextBox* box = test_tagged<ContextBox>(L, index, lesson_context_tag);
+  return box != nullptr ? *box : nullptr;
 }
 
-namespace {
-std::string lesson_number(double x) { return format_number(x == 0.0 ? 0.0 : x, 10); }
-
-std::string number_list(const double* x, int n) {
-  std::string text;
-  for (int i = 0; i < n; ++i) text += (i ? ", " : "") + lesson_number(x[i]);
-  return text;
-}
-}  // namespace
-
-std::string format_value(lua_State* L, int index, const std::string& indent) {
+bool read_lesson(lua_State* L, int index, LessonSpec& spec, std::string& error) {
   index = lua_absindex(L, index);
-  if (lua_type(L, index) == LUA_TNUMBER) {
-    if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
-    return lesson_number(lua_tonumber(L, index));
+  static const char* const allowed[] = {"id", "title", "source", "steps", "tolerance", nullptr};
+  error = unknown_field(L, index, allowed);
+  if (error.empty()) read_text(L, index, "id", true, true, spec.id, error);
+  if (error.empty() && spec.id.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") !=
+                           std::string::npos)
+    error = "field 'id' may hold only a-z, 0-9 and '-', got '" + spec.id + "'";
+  if (error.empty()) read_text(L, index, "title", true, true, spec.title, error);
+  if (error.empty()) read_text(L, index, "source", true, true, spec.source, error);
+  if (error.empty()) read_lesson_tolerance(L, index, spec, error);
+  if (!error.empty()) return false;
+  lua_newtable(L);
+  if (!read_steps(L, index, lua_gettop(L), spec, error)) {
+    lua_pop(L, 1);
+    return false;
   }
-  if (const Vec3* v = test_vec3(L, index)) return "(" + number_list(v->data(), 3) + ")";
-  if (const Quat* q = test_quat(L, index)) {
-    const double wxyz[] = {q->w(), q->x(), q->y(), q->z()};
-    return "quat(" + number_list(wxyz, 4) + ")";
-  }
-  if (const Mat3* m = test_mat3(L, index)) {
-    std::string text = indent.empty() ? "(" : "";
-    for (int i = 0; i < 3; ++i) {
-      const double row[] = {(*m)(i, 0), (*m)(i, 1), (*m)(i, 2)};
-      const std::string opening = indent.empty() ? (i ? ", (" : "(") : "\n" + indent + "(";
-      text += opening + number_list(row, 3) + ")";
-    }
-    return indent.empty() ? text + ")" : text;
-  }
-  if (lua_type(L, index) == LUA_TTABLE) {
-    std::string text = "{";
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, index));
-    for (lua_Integer i = 1; i <= n; ++i) {
-      lua_rawgeti(L, index, i);
-      if (i > 1) text += ", ";
-      if (lua_type(L, -1) == LUA_TNUMBER) {
-        text += format_value(L, -1, "");
-      } else {  // by tostring: no recursion into nested (possibly cyclic) tables
-        text += luaL_tolstring(L, -1, nullptr);
-        lua_pop(L, 1);
-      }
-      lua_pop(L, 1);
-    }
-    return text + "}";
-  }
-  std::string text = luaL_tolstring(L, index, nullptr);
-  lua_pop(L, 1);
-  return text;
+  return true;
 }
 
 void open_lesson(lua_State* L, int lib) { register_entries(L, lib, functions); }

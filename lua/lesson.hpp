@@ -1,6 +1,7 @@
 // Lessons: the `lesson{...}` constructor that validates a lesson table, and the `ctx` object a
 // step's run(ctx) receives, which shows values and checks them against the document's numbers.
-// The CLI's lesson runner creates one context per lesson and reads the tally afterwards.
+// The CLI's lesson runner reads the lesson with read_lesson, creates one context per lesson
+// run and reads its tally afterwards.
 #pragma once
 
 #include <lua.hpp>
@@ -8,26 +9,55 @@
 #include <string>
 #include <vector>
 
+#include "lua/lesson_values.hpp"
+
 namespace rigidlab::lua {
 
-// The outcome of the expectations recorded by one context.
-struct LessonTally {
-  int passed = 0;
-  int failed = 0;
-  std::vector<std::string> failures;  // "label: got X, want Y (tolerance ...)"
-  bool quiet = false;                 // check mode: record, print nothing
-  int width = 80;                     // columns to fit the shown values and checks into
+// Where a lesson's ctx writes: the terminal, a transcript being exported.
+class LessonOutput {
+ public:
+  virtual ~LessonOutput() = default;
+  // Lines as the lesson shows them, each ending in "\n".
+  virtual void write(const std::string& lines) = 0;
 };
 
-// Pushes a new ctx userdata and returns its tally (valid while the userdata lives).
-LessonTally& push_lesson_context(lua_State* L, bool quiet);
-// The tally of the ctx at `index`, or nullptr if it is not a ctx.
-LessonTally* test_lesson_context(lua_State* L, int index);
+// One run of a lesson: where its ctx writes and how its checks went. The runner owns it and
+// keeps it alive as long as the Lua state (declared before the state): the ctx userdata only
+// points to it. Once `ended` is set, or the ctx has been garbage-collected, every method of
+// the ctx raises an error: a ctx kept past its lesson (in a table whose __gc uses it) checks
+// nothing and writes nothing.
+struct LessonContext {
+  int passed = 0;
+  int failed = 0;
+  std::vector<std::string> failures;  // "label: got X, want Y (reason; tolerance ...)"
+  LessonOutput* output = nullptr;     // nullptr: check mode, nothing is written
+  int width = 80;                     // columns to fit the shown values and checks into
+  Tolerance tolerance;                // the lesson's default (lesson{tolerance = ...})
+  bool ended = false;
+};
 
-// Formats a value as a lesson shows it: numbers with 10 significant digits (−0 as 0, so a
-// rounding sign does not distract), vec3 (x, y, z), quat quat(w, x, y, z), mat3 ((..), (..),
-// (..)) or, with a non-empty `indent`, on three rows each starting with a newline and
-// `indent`; a table of numbers as {a, b, c}; anything else by tostring.
-std::string format_value(lua_State* L, int index, const std::string& indent);
+// Pushes a new ctx userdata for `context`.
+void push_lesson_context(lua_State* L, LessonContext& context);
+// The context of the ctx at `index` if it is a live ctx (not garbage-collected), else nullptr.
+LessonContext* test_lesson_context(lua_State* L, int index);
+
+// A lesson as lesson{} validated it.
+struct LessonStep {
+  std::string title, text, formula;
+};
+struct LessonSpec {
+  std::string id, title, source;
+  Tolerance tolerance;  // lesson{tolerance = {rel =, abs =, reason =}}, else the default
+  bool has_tolerance = false;
+  std::vector<LessonStep> steps;
+};
+
+// Reads the lesson table at `index` by the rules of lesson{} with raw reads only (no
+// metamethod of the table, of its steps or of their fields runs), into `spec`, and pushes the
+// list of the steps' run functions (false for a step without one). The runner then works from
+// these copies, so nothing the lesson does to its table later changes what runs. On a table
+// that is not a lesson, pushes nothing and returns false with the reason in `error`
+// ("field 'id' must be a non-empty string, got nil", "steps[2]: unknown field 'txt' ...").
+bool read_lesson(lua_State* L, int index, LessonSpec& spec, std::string& error);
 
 }  // namespace rigidlab::lua
