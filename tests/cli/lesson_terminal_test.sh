@@ -39,6 +39,16 @@ wait_for "second run: a prompt" "$step_prompt"
 enter q
 wait_exit "q quits, exit 0" 0
 
+# The time limit of an untrusted lesson counts its steps, not the wait at the prompt: 1.5 s
+# of reading under a 1 s limit, and the next step still runs (issue 12 item 7).
+start -- lesson --timeout 1 "$fixture"
+wait_for "a lesson under a 1 s limit waits at its prompt" "$step_prompt"
+sleep 1.5
+key Enter
+wait_for "after 1.5 s at the prompt the next step runs" '^  ✓ two: got 2, want 2$'
+enter q
+wait_exit "and quits with 0" 0
+
 mkdir "$scratch/lessons"
 cp "$fixture" "$scratch/lessons/"
 start RIGIDLAB_LESSONS="$scratch/lessons" -- lesson
