@@ -84,6 +84,32 @@ std::string fit_value(const std::string& prefix, const std::string& value, size_
   return text;
 }
 
+// ---- raw reading of lesson tables ----------------------------------------------------------
+
+// Raw field `name` of the table at `table`, pushed; returns its type.
+int raw_field(lua_State* L, int table, const char* name) {
+  lua_pushstring(L, name);
+  return lua_rawget(L, table);
+}
+
+// The first key of the table at `table` that is not in `allowed` (nullptr-terminated), as a
+// message; "" when there is none.
+std::string unknown_field(lua_State* L, int table, const char* const* allowed) {
+  lua_pushnil(L);
+  while (lua_next(L, table) != 0) {
+    lua_pop(L, 1);
+    bool known = false;
+    for (const char* const* a = allowed; *a && !known; ++a)
+      known = lua_type(L, -1) == LUA_TSTRING && std::strcmp(*a, lua_tostring(L, -1)) == 0;
+    if (known) continue;
+    std::string message = std::string("unknown field '") + push_key_name(L, -1) + "' (fields are: ";
+    for (const char* const* a = allowed; *a; ++a) message += (a == allowed ? "" : ", ") + std::string(*a);
+    lua_pop(L, 2);
+    return message + ")";
+  }
+  return "";
+}
+
 // ---- tolerances ------------------------------------------------------------------------------
 
 // Reads {abs =, rel =, reason =} at `index` raw (no metamethod runs) into `tolerance`: a
@@ -91,20 +117,9 @@ std::string fit_value(const std::string& prefix, const std::string& value, size_
 bool read_tolerance_table(lua_State* L, int index, Tolerance& tolerance, std::string& error) {
   index = lua_absindex(L, index);
   tolerance = Tolerance{0.0, 0.0, ""};
-  lua_pushnil(L);
-  while (lua_next(L, index) != 0) {
-    lua_pop(L, 1);
-    const char* key = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : nullptr;
-    const bool known = key != nullptr && (std::strcmp(key, "abs") == 0 ||
-                                          std::strcmp(key, "rel") == 0 ||
-                                          std::strcmp(key, "reason") == 0);
-    if (!known) {
-      error = std::string("unknown field '") + push_key_name(L, -1) +
-              "' (fields are: abs, rel, reason)";
-      lua_pop(L, 2);
-      return false;
-    }
-  }
+  static const char* const allowed[] = {"abs", "rel", "reason", nullptr};
+  error = unknown_field(L, index, allowed);
+  if (!error.empty()) return false;
   for (const char* name : {"abs", "rel"}) {
     lua_pushstring(L, name);
     const int type = lua_rawget(L, index);
@@ -344,30 +359,6 @@ int context_tostring(lua_State* L) {
 }
 
 // ---- lesson{} --------------------------------------------------------------------------------
-
-// Raw field `name` of the table at `table`, pushed; returns its type.
-int raw_field(lua_State* L, int table, const char* name) {
-  lua_pushstring(L, name);
-  return lua_rawget(L, table);
-}
-
-// The first key of the table at `table` that is not in `allowed` (nullptr-terminated), as a
-// message; "" when there is none.
-std::string unknown_field(lua_State* L, int table, const char* const* allowed) {
-  lua_pushnil(L);
-  while (lua_next(L, table) != 0) {
-    lua_pop(L, 1);
-    bool known = false;
-    for (const char* const* a = allowed; *a && !known; ++a)
-      known = lua_type(L, -1) == LUA_TSTRING && std::strcmp(*a, lua_tostring(L, -1)) == 0;
-    if (known) continue;
-    std::string message = std::string("unknown field '") + push_key_name(L, -1) + "' (fields are: ";
-    for (const char* const* a = allowed; *a; ++a) message += (a == allowed ? "" : ", ") + std::string(*a);
-    lua_pop(L, 2);
-    return message + ")";
-  }
-  return "";
-}
 
 // Field `name` of the table at `table` into `out`: a string (non-empty when `non_empty`).
 bool read_text(lua_State* L, int table, const char* name, bool required, bool non_empty,
