@@ -226,6 +226,15 @@ void BroadPhase::update_pairs() {
   pending_free_.clear();
 }
 
+void BroadPhase::clear() {
+  moving_.clear();
+  fixed_.clear();
+  proxies_.clear();
+  for (std::vector<ProxyId>* ids : {&free_ids_, &move_buffer_, &pending_free_}) ids->clear();
+  for (std::vector<BroadPhasePair>* list : {&pairs_, &added_, &removed_, &merged_, &candidates_})
+    list->clear();
+}
+
 void BroadPhase::rebuild() {
   moving_.rebuild();
   fixed_.rebuild();

@@ -138,6 +138,9 @@ class BroadPhase {
   void rebuild();
   // Grows every buffer for this many proxies and pairs, so reaching them allocates nothing.
   void reserve(std::int32_t proxies, std::size_t pairs);
+  // Destroys every proxy and forgets every pair at once (a world emptied); ids start again from
+  // 0, and the memory is kept for reuse.
+  void clear();
   // Empty when the trees and the pair set are consistent (every live proxy's tight box inside
   // its fat box, pairs sorted, unique and overlapping, no pair of two fixed proxies), else what
   // is wrong. Linear in the pairs; for tests.

@@ -35,6 +35,12 @@ void DynamicTree::reserve(std::int32_t leaves) {
   rebuild_leaves_.reserve(static_cast<std::size_t>(leaves));
 }
 
+void DynamicTree::clear() {
+  nodes_.clear();
+  root_ = free_list_ = null_node;
+  leaf_count_ = 0;
+}
+
 std::int32_t DynamicTree::insert(const Aabb& box, std::int32_t payload) {
   // An insertion takes at most two nodes (the leaf and its new parent), and a rebuild one more
   // slot of scratch: growing both first means that if that fails nothing has changed, and

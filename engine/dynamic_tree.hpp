@@ -86,6 +86,8 @@ class DynamicTree {
   void rebuild();
   // Grows the node pool for `leaves` leaves, so that holding that many allocates nothing.
   void reserve(std::int32_t leaves);
+  // Removes every leaf; the memory is kept for reuse.
+  void clear();
   // Empty when every invariant holds (links both ways, each internal box the union of its
   // children's, heights, leaf count, free list), else the first one broken.
   std::string check() const;

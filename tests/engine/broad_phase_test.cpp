@@ -553,6 +553,23 @@ TEST(BroadPhase, TreeHeightStaysLogarithmic) {
   EXPECT_EQ(scene.bp.check(), "");
 }
 
+TEST(BroadPhase, ClearForgetsEverything) {
+  Scene scene(17, 4.0);
+  for (int i = 0; i < 100; ++i) scene.add_random();
+  scene.bp.update_pairs();
+  ASSERT_FALSE(scene.bp.pairs().empty());
+  scene.bp.clear();
+  EXPECT_EQ(scene.bp.proxy_count(), 0);
+  EXPECT_TRUE(scene.bp.pairs().empty());
+  EXPECT_FALSE(scene.bp.contains(0));
+  scene.things.clear();
+  for (int i = 0; i < 50; ++i) scene.add_random();
+  EXPECT_EQ(scene.things.front().proxy, 0);
+  scene.bp.update_pairs();
+  EXPECT_EQ(scene.reported(), scene.brute_force(false));
+  EXPECT_EQ(scene.bp.check(), "");
+}
+
 TEST(BroadPhase, BadInputThrowsAndChangesNothing) {
   EXPECT_THROW(BroadPhase(BroadPhaseSettings{-0.1, 0.1, 4.0}), std::invalid_argument);
   EXPECT_THROW(BroadPhase(BroadPhaseSettings{0.1, -1.0, 4.0}), std::invalid_argument);
