@@ -34,8 +34,8 @@ local function momentum_loop(dt, steps, tau)
   return L, world_inverse_inertia(q) * L, q
 end
 
-local function box_in_world(integrator)
-  local w = world{gravity = vec3(0, 0, 0), integrator = integrator}
+local function box_in_world(integrator, gyroscopic)
+  local w = world{gravity = vec3(0, 0, 0), integrator = integrator, gyroscopic = gyroscopic}
   local b = w:add(body.box{mass = mass, size = size, orientation = start, angular_velocity = spin})
   return w, b
 end
@@ -77,10 +77,13 @@ p = mv. Each frame: add the torque to L, compute ω = I⁻¹L with the current o
 turn the orientation by ωΔt (004's loop does the same with linearMomentum and
 angularMomentum). The reason is that dL/dt = τ holds in world axes with nothing else in
 it, so for a constant torque the update L += τΔt is exact: L(t) = L₀ + τt whatever the
-step. rigidlab's world keeps ω instead, and its Euler-family integrators reach L only
-approximately: the table shows their error in L after 2 s, against the loop's, for a
-tumbling box under a constant world torque. RK4 gets close; the Euler variants are off by
-a lot, because ω about this box's axes changes fast and they follow it in straight pieces.
+step. rigidlab's world keeps ω instead. Its default rotation update (gyroscopic =
+"conserving") works on L too: half the torque impulse, a turn made of exact rotations that
+leave the world L as it is, the other half; so it also ends at L₀ + τt to round-off, with
+either Euler integrator. The table shows the error in L after 2 s, against the loop's, for
+a tumbling box under a constant world torque. RK4, which steps ω, gets close; an Euler
+step of ω itself (gyroscopic = "implicit", 001's Newton step) is off by a lot, because ω
+about this box's axes changes fast and it follows ω in straight pieces.
 The loop is not exact in everything, though: ω = I⁻¹L depends on the orientation, which it
 still steps to first order, so ω after 2 s differs a lot between Δt = 0.1 and 0.05 s.]],
       formula = "L(t+Δt) = L(t) + τΔt,   ω = A I₀⁻¹ Aᵀ L,   A ← Rotate(ωΔt)·A",
@@ -92,11 +95,16 @@ still steps to first order, so ω after 2 s differs a lot between Δt = 0.1 and 
           local w0, b0 = box_in_world("semi_implicit")
           local want = b0:angular_momentum() + torque * duration
           local row = {dt, (L - want):norm()}
-          for _, method in ipairs({"semi_implicit", "euler", "rk4"}) do
-            local w, b = box_in_world(method)
+          for _, method in ipairs({"semi_implicit", "euler", "rk4", "implicit"}) do
+            local w, b = box_in_world(method == "implicit" and "semi_implicit" or method,
+                                      method == "implicit" and "implicit" or nil)
             w:add_force(function() b:apply_torque(torque) end)
             w:step(dt, steps)
             row[#row + 1] = (b:angular_momentum() - want):norm()
+            if method == "semi_implicit" or method == "euler" then
+              ctx:expect("Δt = " .. dt .. ": world " .. method .. " (conserving): L = L₀ + τt",
+                         b:angular_momentum(), want, 1e-12)
+            end
           end
           rows[#rows + 1] = row
           ctx:show("Δt = " .. dt .. ": L after 2 s, momentum loop (kg·m²/s)", L)
@@ -104,7 +112,7 @@ still steps to first order, so ω after 2 s differs a lot between Δt = 0.1 and 
           ctx:expect("Δt = " .. dt .. ": L = L₀ + τt exactly", L, want, 1e-12)
         end
         ctx:table({"Δt (s)", "‖L − (L₀+τt)‖ loop", "world semi_implicit", "world euler",
-                   "world rk4"}, rows)
+                   "world rk4", "semi_implicit, implicit"}, rows)
       end,
     },
     {
