@@ -212,6 +212,35 @@ TEST(Integrators, MeasuredOrders) {
   EXPECT_NEAR(order(Integrator::rk4, 0.02), 4.0, 0.15);
 }
 
+// ---- growing a model that is moving ---------------------------------------------------------
+
+TEST(AddLink, AppendsZeroCoordinatesAndKeepsTheState) {
+  Articulation art(BaseType::free);
+  LinkSpec body;
+  body.joint = JointType::fixed;
+  body.inertia = Mat3::Identity();
+  art.add_link(body);
+  VectorXd q(7), v(6);
+  q << 1, 2, 3, 0, 1, 0, 0;
+  v << 0.1, 0.2, 0.3, 0.4, 0.5, 0.6;
+  art.set_state(q, v);
+  art.set_torques((VectorXd(6) << 1, 0, 0, 0, 0, 0).finished());
+  LinkSpec arm;
+  arm.parent = 0;
+  arm.com = Vec3(0.5, 0, 0);
+  art.add_link(arm);
+  EXPECT_EQ(art.q().head(7), q);
+  EXPECT_EQ(art.q()[7], 0.0);
+  EXPECT_EQ(art.v().head(6), v);
+  EXPECT_EQ(art.v()[6], 0.0);
+  EXPECT_EQ(art.torques()[0], 1.0);
+  EXPECT_EQ(art.torques()[6], 0.0);
+  EXPECT_EQ(art.model().links()[1].q_index, 7);
+  EXPECT_EQ(art.model().links()[1].v_index, 6);
+  art.step(0.01);  // the grown workspace and scratch vectors are used
+  EXPECT_TRUE(art.q().allFinite());
+}
+
 // ---- bad input --------------------------------------------------------------------------------
 
 TEST(BadInput, LinksRefusedWithTheRule) {

@@ -111,6 +111,29 @@ T.case("controls run at every RK4 stage, on the stage state", function()
   T.equal(#times, 4, "cleared")
 end)
 
+T.case("queries from inside a control do not disturb the step", function()
+  local function run(nested)
+    local art = rbdl_chain(2)
+    art.integrator = "rk4"
+    art:set_state({0.4, -0.3}, {0.2, 0.1})
+    art:add_control(function(a)
+      if nested then
+        a:forward_dynamics({1, 2})
+        a:aba_trace({0, 0})
+        a:mass_matrix()
+        a:jacobian(2)
+        a:inverse_dynamics({1, 1})
+      end
+      return {0.1, -0.2}
+    end)
+    art:step(0.01, 50)
+    return art.q[1], art.q[2], art.qd[1], art.qd[2]
+  end
+  local a = {run(false)}
+  local b = {run(true)}
+  for i = 1, 4 do T.equal(b[i], a[i], "entry " .. i) end
+end)
+
 T.case("a PD controller: the document's τ = kp(θd − θ) + kv(θ̇d − θ̇)", function()
   local art = articulation{gravity = vec3()}
   art:add_link{inertia = mat3.diag(1, 1, 2)}
