@@ -28,6 +28,20 @@ bool is_identifier(const char* text) {
   return true;
 }
 
+// Everything below reads tables raw (lua_rawget, lua_next, lua_getmetatable): Tab runs none of
+// the user's code, so a metamethod that loops or fails cannot hang or break the line editor.
+
+// Pushes field `name` of the table at `index`, read raw (nil if it is not a table).
+void push_raw_field(lua_State* L, int index, const char* name) {
+  if (lua_type(L, index) != LUA_TTABLE) {
+    lua_pushnil(L);
+    return;
+  }
+  index = lua_absindex(L, index);
+  lua_pushstring(L, name);
+  lua_rawget(L, index);
+}
+
 // Adds to `out` the identifier keys of the table at `index` that start with `partial`, then
 // those of its metatable's __index table (objects with methods in a class table).
 void add_keys(lua_State* L, int index, const std::string& partial, std::vector<std::string>& out,
@@ -44,7 +58,7 @@ void add_keys(lua_State* L, int index, const std::string& partial, std::vector<s
       out.emplace_back(key);
   }
   if (lua_getmetatable(L, index)) {
-    lua_getfield(L, -1, "__index");
+    push_raw_field(L, -1, "__index");
     add_keys(L, -1, partial, out, depth + 1);
     lua_pop(L, 2);
   }
@@ -55,10 +69,12 @@ void add_keys(lua_State* L, int index, const std::string& partial, std::vector<s
 void add_type_methods(lua_State* L, int index, const std::string& partial,
                       std::vector<std::string>& out) {
   if (!lua_getmetatable(L, index)) return;
-  if (lua_getfield(L, -1, "__name") == LUA_TSTRING) {
-    lua_getglobal(L, lua_tostring(L, -1));
+  push_raw_field(L, -1, "__name");
+  if (lua_type(L, -1) == LUA_TSTRING) {
+    lua_pushglobaltable(L);
+    push_raw_field(L, -1, lua_tostring(L, -2));
     add_keys(L, -1, partial, out);
-    lua_pop(L, 1);
+    lua_pop(L, 2);
   }
   lua_pop(L, 2);
 }

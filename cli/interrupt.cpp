@@ -1,39 +1,40 @@
 #include "cli/interrupt.hpp"
 
+#include <time.h>
+#include <unistd.h>
+
+#include "cli/hook_guard.hpp"
+
 namespace rigidlab::cli {
 namespace {
 
-// The state whose code Ctrl-C interrupts, and whether a Ctrl-C is waiting to be raised.
-lua_State* volatile running_state = nullptr;
+// Whether a Ctrl-C is waiting to be raised, and since when (CLOCK_MONOTONIC).
 volatile sig_atomic_t interrupt_pending = 0;
+struct timespec pending_since {};
 volatile sig_atomic_t prompt_interrupted = 0;
+int call_depth = 0;  // InterruptibleCalls alive
 
-// The hook in place before Ctrl-C replaced it (none today; a limit's count hook later): it
-// is put back once the interruption has been raised.
-struct SavedHook {
-  lua_Hook hook = nullptr;
-  int mask = 0;
-  int count = 0;
-};
-SavedHook saved_hook;
+// Seconds a Ctrl-C may wait before the next one ends the process.
+constexpr long stuck_seconds = 1;
 
-void restore_hook() {
-  interrupt_pending = 0;
-  if (running_state != nullptr)
-    lua_sethook(running_state, saved_hook.hook, saved_hook.mask, saved_hook.count);
+double seconds_between(const struct timespec& from, const struct timespec& to) {
+  return static_cast<double>(to.tv_sec - from.tv_sec) + 1e-9 * static_cast<double>(to.tv_nsec - from.tv_nsec);
 }
 
-[[noreturn]] void interrupt_hook(lua_State* L, lua_Debug*) { raise_interrupt(L); }
-
-// lua.c's laction: lua_sethook is safe to call from a signal handler (lua.h, 5.4).
-void on_sigint_while_running(int signal_number) {
-  ::signal(signal_number, SIG_DFL);  // a second Ctrl-C terminates the process
-  lua_State* L = running_state;
-  if (L == nullptr) return;
-  if (lua_gethook(L) != interrupt_hook)
-    saved_hook = SavedHook{lua_gethook(L), lua_gethookmask(L), lua_gethookcount(L)};
-  interrupt_pending = 1;
-  lua_sethook(L, interrupt_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+// Only async-signal-safe calls.
+void on_sigint_while_running(int) {
+  struct timespec now {};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  if (interrupt_pending == 0) {
+    pending_since = now;
+    interrupt_pending = 1;
+    return;
+  }
+  if (seconds_between(pending_since, now) < stuck_seconds) return;
+  static const char message[] =
+      "\nrigidlab: ended by Ctrl-C: a C function has not returned to Lua since the first one\n";
+  if (write(STDERR_FILENO, message, sizeof message - 1) < 0) _exit(130);
+  _exit(130);
 }
 
 void on_sigint_at_prompt(int) { prompt_interrupted = 1; }
@@ -49,26 +50,23 @@ struct sigaction action(void (*handler)(int)) {
 }  // namespace
 
 InterruptibleCall::InterruptibleCall(lua_State* L) {
-  running_state = L;
-  interrupt_pending = 0;
-  const struct sigaction handler = action(on_sigint_while_running);
-  sigaction(SIGINT, &handler, &previous_);
+  if (call_depth++ == 0) {
+    interrupt_pending = 0;
+    const struct sigaction handler = action(on_sigint_while_running);
+    sigaction(SIGINT, &handler, &previous_);
+  }
+  guard_hooks(L);
 }
 
 InterruptibleCall::~InterruptibleCall() {
+  if (--call_depth > 0) return;
   sigaction(SIGINT, &previous_, nullptr);
-  // A Ctrl-C that came as the call was returning must not stop the next one.
-  if (interrupt_pending) restore_hook();
-  running_state = nullptr;
+  interrupt_pending = 0;  // a Ctrl-C that came as the call was returning must not stop the next
 }
 
 bool interrupt_requested() { return interrupt_pending != 0; }
 
-void raise_interrupt(lua_State* L) {
-  restore_hook();
-  luaL_error(L, "interrupted!");
-  __builtin_unreachable();
-}
+void clear_interrupt() { interrupt_pending = 0; }
 
 PromptInterrupt::PromptInterrupt() {
   prompt_interrupted = 0;
@@ -79,5 +77,14 @@ PromptInterrupt::PromptInterrupt() {
 PromptInterrupt::~PromptInterrupt() { sigaction(SIGINT, &previous_, nullptr); }
 
 bool PromptInterrupt::happened() const { return prompt_interrupted != 0; }
+
+IgnoreStrayInterrupts::IgnoreStrayInterrupts() {
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGINT, &ignore, &previous_);
+}
+
+IgnoreStrayInterrupts::~IgnoreStrayInterrupts() { sigaction(SIGINT, &previous_, nullptr); }
 
 }  // namespace rigidlab::cli

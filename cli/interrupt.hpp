@@ -1,11 +1,15 @@
-// Ctrl-C (SIGINT), as Lua's own lua.c handles it: while Lua code runs, the signal handler sets
-// a hook that raises "interrupted!" at the next instruction, so the computation stops with an
-// ordinary Lua error and the REPL goes on; a second Ctrl-C before the hook runs (a C function
-// that never returns to Lua) terminates the process. At the REPL prompt Ctrl-C only clears
-// the line being typed.
+// Ctrl-C (SIGINT) while Lua code runs: the signal handler only raises a flag, which the limits'
+// count hook (cli/limits.hpp, installed on every thread of the state, coroutines included,
+// every 1000 instructions at most) and the stop check that the engine's long loops poll turn
+// into the error "interrupted!": the computation stops with an ordinary Lua error and the REPL
+// goes on. (lua.c sets a hook from the signal handler instead; hooks are per thread, so that
+// misses a loop inside a coroutine.) More Ctrl-Cs while the first one waits change nothing;
+// once one has waited for a second, a C function is not returning (a backtracking
+// string.find): the next Ctrl-C ends the process, the only way out there. At the REPL prompt
+// Ctrl-C only clears the line being typed.
 //
-// A signal handler can reach nothing but globals, so this file keeps the one piece of global
-// state of the CLI: the state being interrupted and the flags the handlers set.
+// A signal handler can reach nothing but globals, so this file keeps the flags the handlers
+// set.
 #pragma once
 
 #include <lua.hpp>
@@ -13,8 +17,9 @@
 
 namespace rigidlab::cli {
 
-// While alive, Ctrl-C interrupts the Lua code running in L (L must be the main thread: the
-// hook is set on it). Restores the previous SIGINT action when destroyed.
+// While alive, the Lua code called in L is the user's: Ctrl-C interrupts it, and the limits'
+// hook is guarded against debug.sethook (cli/hook_guard.hpp). Restores the previous SIGINT
+// action when destroyed. Nests.
 class InterruptibleCall {
  public:
   explicit InterruptibleCall(lua_State* L);
@@ -26,11 +31,9 @@ class InterruptibleCall {
   struct sigaction previous_ {};
 };
 
-// True when a Ctrl-C is waiting to be raised: the state's stop check (cli/limits.hpp), which
-// the engine's long loops poll where no hook can run, then calls raise_interrupt.
+// True when a Ctrl-C is waiting to be raised; clear_interrupt forgets it (it is being raised).
 bool interrupt_requested();
-// Raises "interrupted!" in L and puts back the hook the Ctrl-C replaced.
-[[noreturn]] void raise_interrupt(lua_State* L);
+void clear_interrupt();
 
 // While alive, Ctrl-C sets a flag instead of ending the process, and interrupts a blocking
 // read (no SA_RESTART), so the line editor returns. Used around each prompt.
@@ -42,6 +45,20 @@ class PromptInterrupt {
   PromptInterrupt& operator=(const PromptInterrupt&) = delete;
   // True when Ctrl-C was pressed since construction.
   bool happened() const;
+
+ private:
+  struct sigaction previous_ {};
+};
+
+// While alive, a Ctrl-C that comes outside a call and a prompt (while the REPL reports an error,
+// say: a second Ctrl-C just after the one that stopped a loop) is ignored instead of ending
+// the process. For the REPL's whole session.
+class IgnoreStrayInterrupts {
+ public:
+  IgnoreStrayInterrupts();
+  ~IgnoreStrayInterrupts();
+  IgnoreStrayInterrupts(const IgnoreStrayInterrupts&) = delete;
+  IgnoreStrayInterrupts& operator=(const IgnoreStrayInterrupts&) = delete;
 
  private:
   struct sigaction previous_ {};

@@ -1,39 +1,46 @@
 #include "cli/limits.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include "cli/hook_guard.hpp"
 #include "cli/interrupt.hpp"
 #include "lua/binding.hpp"
 
 namespace rigidlab::cli {
 namespace {
 
-constexpr int hook_interval = 1000;  // VM instructions between checks
-const char registry_key = 0;         // the LimitedState of a state, for LimitedState::of
+const char registry_key = 0;  // the LimitedState of a state, for LimitedState::of
+// Heap growth (bytes) that makes the hook tell Lua's collector: a world's engine memory is
+// invisible to it, and garbage worlds would otherwise wait for Lua's own allocations.
+constexpr std::size_t collector_nudge_bytes = 64 * 1024;
 
-// Pushes "chunk:line:" of the innermost Lua function running (the line of a loop stopped by
-// the hook, or the line that called w:step), or "" when none.
-void push_where(lua_State* L) {
+std::size_t bytes_of(double megabytes) {
+  return static_cast<std::size_t>(std::ceil(megabytes * (1 << 20)));
+}
+
+// Writes "chunk:line: " of the innermost Lua function running (the line of a loop stopped by
+// the hook, or the line that called w:step) into `text`, or "" when none.
+void write_where(lua_State* L, char* text, std::size_t size) {
+  text[0] = '\0';
   lua_Debug ar;
   for (int level = 0; lua_getstack(L, level, &ar) != 0; ++level) {
     lua_getinfo(L, "Sl", &ar);
     if (ar.currentline > 0) {
-      lua_pushfstring(L, "%s:%d: ", ar.short_src, ar.currentline);
+      std::snprintf(text, size, "%s:%d: ", ar.short_src, ar.currentline);
       return;
     }
   }
-  lua_pushliteral(L, "");
 }
 
 }  // namespace
 
 LimitedState::LimitedState(const Limits& limits, WhenStuck when_stuck)
-    : limits_(limits),
-      max_memory_bytes_(static_cast<std::size_t>(std::ceil(limits.max_memory_megabytes * (1 << 20)))) {
+    : limits_(limits), budget_(bytes_of(limits.max_memory_megabytes)) {
   // luaL_newstate for lauxlib's panic and warning functions.
   state_ = luaL_newstate();
   if (state_ == nullptr) return;
@@ -46,15 +53,15 @@ LimitedState::LimitedState(const Limits& limits, WhenStuck when_stuck)
   // Then the allocator becomes the counting one (both use realloc and free), starting from
   // what Lua has allocated: the allocations above, outside any protected call, cannot fail on
   // the cap; everything after runs in protected mode.
-  used_bytes_ = static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNT)) * 1024 +
-                static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNTB));
+  budget_.set_lua_bytes(static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNT)) * 1024 +
+                        static_cast<std::size_t>(lua_gc(state_, LUA_GCCOUNTB)));
   lua_setallocf(state_, &LimitedState::allocate, this);
   if (limits_.timeout_seconds > 0.0)
     watchdog_ = std::make_unique<Watchdog>(
         deadline_passed_, stuck_grace_seconds,
         when_stuck == WhenStuck::exit ? "rigidlab: " + stuck_message() : "");
-  if (limits_.max_instructions > 0 || limits_.timeout_seconds > 0.0)
-    lua_sethook(state_, &LimitedState::hook, LUA_MASKCOUNT, hook_interval);
+  // Always: Ctrl-C is raised by this hook too.
+  install_limits_hook(state_, &LimitedState::hook);
 }
 
 LimitedState::~LimitedState() {
@@ -72,6 +79,8 @@ LimitedState* LimitedState::of(lua_State* L) {
 void LimitedState::begin_run() {
   instructions_ = 0;
   hit_ = Hit::none;
+  budget_.set_refused(false);
+  stop_message_[0] = '\0';
   deadline_passed_ = false;
   seconds_left_ = limits_.timeout_seconds;
   run_start_ = std::chrono::steady_clock::now();
@@ -89,28 +98,44 @@ void LimitedState::resume_run() {
   if (watchdog_) watchdog_->arm(std::max(seconds_left_, 0.0));
 }
 
-std::string LimitedState::limit_hit() const {
-  char text[96];
-  switch (hit_) {
+LimitedState::Hit LimitedState::hit() const {
+  return hit_ == Hit::none && budget_.refused() ? Hit::memory : hit_;
+}
+
+void LimitedState::describe(Hit hit, char* text, std::size_t size) const {
+  text[0] = '\0';
+  switch (hit) {
     case Hit::instructions:
-      std::snprintf(text, sizeof text, "the instruction limit (%lld instructions)",
+      std::snprintf(text, size, "the instruction limit (%lld instructions)",
                     limits_.max_instructions);
-      return text;
+      break;
     case Hit::memory:
-      std::snprintf(text, sizeof text, "the memory limit (%g MB)", limits_.max_memory_megabytes);
-      return text;
+      std::snprintf(text, size, "the memory limit (%g MB)", limits_.max_memory_megabytes);
+      break;
     case Hit::time:
-      std::snprintf(text, sizeof text, "the time limit (%g s)", limits_.timeout_seconds);
-      return text;
+      std::snprintf(text, size, "the time limit (%g s)", limits_.timeout_seconds);
+      break;
     case Hit::none:
       break;
   }
-  return "";
+}
+
+std::string LimitedState::limit_hit() const {
+  char text[96];
+  describe(hit(), text, sizeof text);
+  return text;
+}
+
+bool LimitedState::is_stop(const char* message) const {
+  return std::strstr(stop_message_, "stopped: ") != nullptr &&
+         std::strstr(message, stop_message_) != nullptr;
 }
 
 std::string LimitedState::explain(const std::string& message) const {
-  if (hit_ == Hit::memory && message.find("not enough memory") != std::string::npos)
+  if (hit() == Hit::memory && message.find("not enough memory") != std::string::npos)
     return "stopped: " + limit_hit() + " reached";
+  const std::size_t stop = stop_message_[0] != '\0' ? message.find(stop_message_) : std::string::npos;
+  if (stop != std::string::npos && stop > 0) return message.substr(stop);
   return message;
 }
 
@@ -127,40 +152,70 @@ void* LimitedState::allocate(void* self_pointer, void* block, std::size_t old_si
   const std::size_t old_bytes = block != nullptr ? old_size : 0;  // else old_size is a type tag
   if (new_size == 0) {
     std::free(block);
-    self->used_bytes_ -= old_bytes;
+    self->budget_.lua_changed(old_bytes, 0);
     return nullptr;
   }
-  if (self->max_memory_bytes_ > 0 && new_size > old_bytes &&
-      self->used_bytes_ - old_bytes + new_size > self->max_memory_bytes_) {
+  if (!self->budget_.lua_may_grow(old_bytes, new_size)) {
     self->hit_ = Hit::memory;
     return nullptr;  // Lua collects garbage and tries once more before raising
   }
   void* result = std::realloc(block, new_size);
-  if (result != nullptr) self->used_bytes_ = self->used_bytes_ - old_bytes + new_size;
+  if (result != nullptr) self->budget_.lua_changed(old_bytes, new_size);
   return result;
 }
 
-void LimitedState::hook(lua_State* L, lua_Debug*) {
+// The limits' hook, on every thread: counts instructions, checks the limits and Ctrl-C at each
+// count event, then runs the script's own hook of the thread, if it set one.
+void LimitedState::hook(lua_State* L, lua_Debug* ar) {
   LimitedState* self;
   std::memcpy(&self, lua_getextraspace(L), sizeof self);
-  self->instructions_ += hook_interval;
-  if (self->limits_.max_instructions > 0 && self->instructions_ > self->limits_.max_instructions)
-    self->raise_limit(L, Hit::instructions);
-  if (self->deadline_passed_.load(std::memory_order_relaxed)) self->raise_limit(L, Hit::time);
+  if (ar->event == LUA_HOOKCOUNT) {
+    self->instructions_ += lua_gethookcount(L);
+    self->check(L);
+    self->nudge_collector(L);
+  }
+  run_script_hook(L, ar);
+}
+
+void LimitedState::check(lua_State* L) {
+  if (interrupt_requested()) raise_stop(L, Hit::none);
+  if (limits_.max_instructions > 0 && instructions_ > limits_.max_instructions)
+    raise_stop(L, Hit::instructions);
+  if (deadline_passed_.load(std::memory_order_relaxed)) raise_stop(L, Hit::time);
+}
+
+// Engine memory that grew since the last report is added to the collector's debt, as if Lua
+// had allocated it, so that garbage worlds are finalised at the pace they take memory.
+void LimitedState::nudge_collector(lua_State* L) {
+  const std::size_t growth = budget_.heap_growth();
+  if (growth < heap_seen_by_collector_) heap_seen_by_collector_ = growth;
+  const std::size_t fresh = growth - heap_seen_by_collector_;
+  if (fresh < collector_nudge_bytes) return;
+  heap_seen_by_collector_ = growth;
+  lua_gc(L, LUA_GCSTEP, static_cast<int>(std::min<std::size_t>(fresh / 1024, INT_MAX)));
 }
 
 // The stop check of the bindings (lua/binding.hpp): two flag reads.
 void LimitedState::stop_check(lua_State* L, void* self_pointer) {
   auto* self = static_cast<LimitedState*>(self_pointer);
-  if (interrupt_requested()) raise_interrupt(L);
-  if (self->deadline_passed_.load(std::memory_order_relaxed)) self->raise_limit(L, Hit::time);
+  if (interrupt_requested()) self->raise_stop(L, Hit::none);
+  if (self->deadline_passed_.load(std::memory_order_relaxed)) self->raise_stop(L, Hit::time);
 }
 
-void LimitedState::raise_limit(lua_State* L, Hit hit) {
-  hit_ = hit;
-  push_where(L);
-  lua_pushfstring(L, "stopped: %s reached", limit_hit().c_str());
-  lua_concat(L, 2);
+// Raises "chunk:line: stopped: the time limit (1 s) reached", or "chunk:line: interrupted!"
+// for Ctrl-C (Hit::none), and keeps the message for is_stop and explain.
+void LimitedState::raise_stop(lua_State* L, Hit hit) {
+  char where[160], limit[96];
+  write_where(L, where, sizeof where);
+  if (hit == Hit::none) {
+    clear_interrupt();
+    std::snprintf(stop_message_, sizeof stop_message_, "%sinterrupted!", where);
+  } else {
+    hit_ = hit;
+    describe(hit, limit, sizeof limit);
+    std::snprintf(stop_message_, sizeof stop_message_, "%sstopped: %s reached", where, limit);
+  }
+  lua_pushstring(L, stop_message_);
   lua_error(L);
   __builtin_unreachable();
 }

@@ -3,14 +3,17 @@
 // defaults for every lesson), so a script or lesson that loops forever, allocates without
 // bound or hangs in a long call is stopped with a message naming the limit.
 //
-// - Instructions: counted by a count hook (every 1000 VM instructions).
-// - Memory: the cap lives in the allocator, which returns NULL only when the cap would be
-//   exceeded, so Lua's emergency collection runs before the allocation fails.
+// - Instructions: counted by a count hook (every 1000 VM instructions), installed on every
+//   thread even without limits (it also raises Ctrl-C's interruption, cli/interrupt.hpp), and
+//   kept in place whatever a script does with debug.sethook (cli/hook_guard.hpp).
+// - Memory: one budget (cli/memory_budget.hpp) for Lua's allocator and for the C++ heap of the
+//   engine. Lua's allocator returns NULL only when the budget would be exceeded, so Lua's
+//   emergency collection runs before the allocation fails; operator new throws std::bad_alloc
+//   there, which the bindings turn into the same "not enough memory" error.
 // - Time: a watchdog thread (cli/watchdog.hpp) raises a flag at the deadline; the count hook
 //   and the state's stop check, which the engine's long loops poll (w:step of any size),
 //   raise the error there. A C function that does not return to Lua in the grace period after
 //   that ends the process (scripts), or its child process (`rigidlab check`).
-// The state's stop check also raises "interrupted!" after a Ctrl-C (cli/interrupt.hpp).
 #pragma once
 
 #include <lua.hpp>
@@ -21,6 +24,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/memory_budget.hpp"
 #include "cli/watchdog.hpp"
 
 namespace rigidlab::cli {
@@ -53,6 +57,7 @@ class LimitedState {
   static LimitedState* of(lua_State* L);
 
   lua_State* get() const { return state_; }  // nullptr if the state could not be created
+  MemoryBudget& budget() { return budget_; }
   // The timed run begins (a script, a REPL chunk, a lesson): restarts the clock and the
   // instruction count. end_run: it has ended, the clock stops (the REPL's prompt is not timed).
   void begin_run();
@@ -62,26 +67,37 @@ class LimitedState {
   void resume_run();
   // Which limit stopped the code, in words ("the memory limit (64 MB)"), or "" if none.
   std::string limit_hit() const;
+  // Whether `message` is the error of a limit that stopped the code (or of Ctrl-C): the
+  // message handler then adds no traceback. Allocates nothing.
+  bool is_stop(const char* message) const;
   // The message to show for an error `message` of the code: "stopped: the memory limit
-  // (64 MB) reached" for Lua's "not enough memory" when the cap refused an allocation.
+  // (64 MB) reached" for Lua's "not enough memory" when the budget refused an allocation;
+  // a limit's or Ctrl-C's error with the position of the code it stopped once (an error
+  // crossing coroutine.wrap gets the position of the call prepended again).
   std::string explain(const std::string& message) const;
   // "stopped: the time limit (1 s) reached in a C function": what is said when the watchdog
   // or a parent process gives up on a call.
   std::string stuck_message() const;
 
  private:
+  enum class Hit { none, instructions, memory, time };
   static void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_size);
   static void hook(lua_State* L, lua_Debug* ar);
   static void stop_check(lua_State* L, void* self);
-  enum class Hit { none, instructions, memory, time };
-  [[noreturn]] void raise_limit(lua_State* L, Hit hit);
+  void check(lua_State* L);
+  void nudge_collector(lua_State* L);
+  [[noreturn]] void raise_stop(lua_State* L, Hit hit);
+  // The words of limit_hit, written into `text` (no allocation: the hook writes them).
+  void describe(Hit hit, char* text, std::size_t size) const;
+  Hit hit() const;
 
   Limits limits_;
-  std::size_t max_memory_bytes_;  // 0: unlimited
+  MemoryBudget budget_;
   lua_State* state_ = nullptr;
-  std::size_t used_bytes_ = 0;
   long long instructions_ = 0;
   Hit hit_ = Hit::none;
+  std::size_t heap_seen_by_collector_ = 0;  // heap growth already reported to Lua's collector
+  char stop_message_[256] = "";  // the last limit's or Ctrl-C's error, position included
   std::atomic<bool> deadline_passed_{false};
   double seconds_left_ = 0.0;  // of the time limit, for resume_run
   std::chrono::steady_clock::time_point run_start_;

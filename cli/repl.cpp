@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "cli/interrupt.hpp"
 #include "cli/limits.hpp"
 #include "cli/line_reader.hpp"
 #include "cli/run.hpp"
@@ -15,9 +16,13 @@ namespace {
 constexpr const char* chunkname = "=stdin";
 
 // The prompt: the global _PROMPT (first line) or _PROMPT2 (continuation) if it is a string
-// or a number, as in lua.c.
+// or a number, as in lua.c; read raw, so that no code of the user's runs at the prompt (an
+// __index on _G that loops).
 std::string prompt(lua_State* L, bool first_line) {
-  lua_getglobal(L, first_line ? "_PROMPT" : "_PROMPT2");
+  lua_pushglobaltable(L);
+  lua_pushstring(L, first_line ? "_PROMPT" : "_PROMPT2");
+  lua_rawget(L, -2);
+  lua_remove(L, -2);
   const char* custom = lua_isstring(L, -1) ? lua_tostring(L, -1) : nullptr;
   std::string result = custom != nullptr ? custom : first_line ? "> " : ">> ";
   lua_pop(L, 1);
@@ -83,6 +88,7 @@ ReadStatus read_chunk(lua_State* L, LineReader& reader, int& status) {
 }  // namespace
 
 void run_repl(lua_State* L, bool terminal) {
+  const IgnoreStrayInterrupts stray_interrupts;
   const std::unique_ptr<LineReader> reader =
       terminal ? make_terminal_reader(L) : make_stream_reader();
   const Traceback traceback = terminal ? Traceback::append : Traceback::omit;

@@ -22,8 +22,7 @@ int message_handler(lua_State* L) {
   }
   // A limit's "stopped: ..." is one line: where the code was is in it, the traceback is noise.
   const LimitedState* limits = LimitedState::of(L);
-  const bool limit_stop = limits != nullptr && !limits->limit_hit().empty() &&
-                          std::strstr(message, "stopped: ") != nullptr;
+  const bool limit_stop = limits != nullptr && limits->is_stop(message);
   if (lua_toboolean(L, lua_upvalueindex(1)) && !limit_stop)
     luaL_traceback(L, L, message, 1);
   else
@@ -31,10 +30,21 @@ int message_handler(lua_State* L) {
   return 1;
 }
 
-// Pushes arg[1], ..., arg[n] (the script's arguments) and returns n, as lua.c's pushargs.
+// Pushes the global `name`, read raw: the CLI runs none of the user's code outside the calls
+// that are limited and interruptible (an __index on _G could loop). Returns its type.
+int push_raw_global(lua_State* L, const char* name) {
+  lua_pushglobaltable(L);
+  lua_pushstring(L, name);
+  const int type = lua_rawget(L, -2);
+  lua_remove(L, -2);
+  return type;
+}
+
+// Pushes arg[1], ..., arg[n] (the script's arguments) and returns n, as lua.c's pushargs (raw:
+// see push_raw_global).
 int push_script_arguments(lua_State* L) {
-  if (lua_getglobal(L, "arg") != LUA_TTABLE) luaL_error(L, "'arg' is not a table");
-  const int count = static_cast<int>(luaL_len(L, -1));
+  if (push_raw_global(L, "arg") != LUA_TTABLE) luaL_error(L, "'arg' is not a table");
+  const int count = static_cast<int>(lua_rawlen(L, -1));
   luaL_checkstack(L, count + 3, "too many arguments to script");
   for (int i = 1; i <= count; ++i) lua_rawgeti(L, -i, i);
   lua_remove(L, -count - 1);
@@ -83,7 +93,7 @@ int run_code(lua_State* L, const char* code) {
 int require_module(lua_State* L, const char* spec) {
   const char* equals = std::strchr(spec, '=');
   const std::string global = equals != nullptr ? std::string(spec, equals) : std::string(spec);
-  lua_getglobal(L, "require");
+  push_raw_global(L, "require");
   lua_pushstring(L, equals != nullptr ? equals + 1 : spec);
   const int status = call_chunk(L, 1, 1, Traceback::append);
   if (status == LUA_OK)
@@ -120,7 +130,7 @@ void print_results(lua_State* L, int base) {
   const int count = lua_gettop(L) - base;
   if (count <= 0) return;
   luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
-  lua_getglobal(L, "print");
+  push_raw_global(L, "print");
   lua_insert(L, base + 1);
   if (call_chunk(L, count, 0, Traceback::omit) != LUA_OK) {
     lua_pushfstring(L, "error calling 'print' (%s)", lua_tostring(L, -1));

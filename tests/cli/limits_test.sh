@@ -123,6 +123,54 @@ run "pcall in a loop cannot outlive the limit" -- \
 expect_status 1
 expect_stderr_contains "stopped: the time limit (0.5 s) reached"
 
+# The limits survive what a script does to hooks (issue 12, item 8): debug.sethook() alone,
+# a hook of the script's own, on the main thread, in a coroutine or set on another coroutine.
+for code in 'debug.sethook() while true do end' \
+    'debug.sethook(function() end, "l") while true do end' \
+    'debug.sethook(function() end, "", 1e9) while true do end' \
+    'coroutine.wrap(function() debug.sethook() while true do end end)()' \
+    'local co = coroutine.create(function() while true do end end) debug.sethook(co) error(select(2, coroutine.resume(co)), 0)'; do
+  run "debug.sethook does not switch the instruction limit off: $code" -- \
+    timeout 20 "$rigidlab" --max-instructions 1e6 -e "$code"
+  expect_status 1
+  expect_stderr_contains "stopped: the instruction limit (1000000 instructions) reached"
+done
+timed "debug.sethook does not switch the time limit's checks off" 3 -- \
+  timeout 20 "$rigidlab" --timeout 0.5 -e 'debug.sethook() while true do end'
+expect_status 1
+expect_stderr_line 1 "rigidlab: (command line):1: stopped: the time limit (0.5 s) reached"
+# A script's hooks still behave as Lua's own: the same events, counts and gethook results as
+# in the reference interpreter, when it is installed (lua5.4).
+hooks='local n, lines, m = 0, 0, 0
+debug.sethook(function() n = n + 1 end, "", 7) for i = 1, 1000 do end debug.sethook()
+debug.sethook(function() m = m + 1 end, "", 2500) for i = 1, 10000 do end debug.sethook()
+debug.sethook(function() lines = lines + 1 end, "l")
+local x = 1
+x = x + 1
+debug.sethook()
+local f, mask, count = debug.gethook()
+debug.sethook(function() end, "cr", 3)
+local _, mask2, count2 = debug.gethook()
+debug.sethook()
+print(n, m, lines, f, mask, count, mask2, count2)'
+if command -v lua5.4 >/dev/null; then
+  run "script hooks as in lua5.4" -- "$rigidlab" --max-instructions 1e9 -e "$hooks"
+  expect_stdout "$(lua5.4 -e "$hooks")"$'\n'
+fi
+
+# A limit raised inside coroutine.wrap: the position of the loop, once (coroutine.wrap prepends
+# the position of its call to an error crossing it; issue 12, item 23).
+run "a limit inside coroutine.wrap names the loop's line once" -- "$rigidlab" --max-instructions 1e6 \
+  -e $'local f = coroutine.wrap(function()\n  while true do end\nend)\nf()'
+expect_status 1
+expect_stderr_line 1 "rigidlab: (command line):2: stopped: the instruction limit (1000000 instructions) reached"
+expect_stderr_line_count 1
+printf 'f = coroutine.wrap(function()\n  while true do end\nend)\nf()\nprint("after")\n' >"$scratch/wrap.lua"
+run "in the REPL too" -- bash -c '"$1" --max-instructions 1e6 <"$2"' _ "$rigidlab" "$scratch/wrap.lua"
+expect_stdout $'after\n'
+expect_stderr_line 1 "stdin:2: stopped: the instruction limit (1000000 instructions) reached"
+expect_stderr_line_count 1
+
 # Bad values are usage errors: exit 2, nothing runs.
 for bad in "--timeout" "--timeout x" "--timeout -1" "--timeout nan" "--timeout inf" "--timeout=" \
     "--timeout 1s" "--max-memory -5" "--max-memory 1e99" "--max-instructions 1.5" \

@@ -136,7 +136,8 @@ run "require(\"rigidlab\") is the table of the globals" -- \
   "$rigidlab" -e 'local r = require("rigidlab") print(r.vec3 == vec3, r.help == help, type(r.version))'
 expect_stdout $'true\ttrue\tstring\n'
 
-# SIGINT (Ctrl-C) stops a running script with an "interrupted!" error, as in lua.
+# SIGINT (Ctrl-C) stops a running script with an "interrupted!" error, as in lua, that says
+# where the script was.
 "$rigidlab" -e 'print("looping") io.stdout:flush() while true do end' \
   >"$scratch/out" 2>"$scratch/err" &
 looping=$!
@@ -146,8 +147,58 @@ case_name="SIGINT interrupts a script"
 status=0
 wait "$looping" || status=$?
 expect_status 1
-expect_stderr_line 1 "rigidlab: interrupted!"
+expect_stderr_line 1 "rigidlab: (command line):1: interrupted!"
 expect_stderr_line 2 "stack traceback:"
+
+# wait_or_kill PID: waits for PID, keeping its exit status in $status; kills it after 10 s,
+# so that a test of an interruption fails instead of hanging when the interruption fails.
+wait_or_kill() {
+  (sleep 10 && kill -KILL "$1") >/dev/null 2>&1 &
+  local killer=$!
+  status=0
+  wait "$1" || status=$?
+  kill "$killer" 2>/dev/null || true
+}
+# start_looping CODE: rigidlab -e CODE in the background ($looping), once it has printed.
+start_looping() {
+  : >"$scratch/out"
+  "$rigidlab" -e "$1" >"$scratch/out" 2>"$scratch/err" &
+  looping=$!
+  for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+}
+# ... a loop inside a coroutine too (hooks are per thread; issue 12, item 10).
+start_looping 'coroutine.wrap(function() print("looping") io.stdout:flush() while true do end end)()'
+kill -INT "$looping" || true
+case_name="SIGINT interrupts a loop in a coroutine"
+wait_or_kill "$looping"
+expect_status 1
+expect_stderr_line 1 "rigidlab: (command line):1: interrupted!"
+# Two SIGINTs in a row stop the REPL's chunk, not the REPL (here reading a pipe).
+{
+  printf 'coroutine.wrap(function() print("looping") io.stdout:flush() while true do end end)()\n'
+  sleep 2
+  printf 'print("still here")\n'
+} | "$rigidlab" >"$scratch/out" 2>"$scratch/err" &
+looping=$!  # of a pipeline in the background: its last process, rigidlab
+for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+kill -INT "$looping" || true
+kill -INT "$looping" || true
+case_name="two SIGINTs in a row: the REPL goes on"
+wait_or_kill "$looping"
+out=$(cat "$scratch/out")$'\n'
+expect_status 0
+expect_stdout $'looping\nstill here\n'
+expect_stderr_line 1 "stdin:1: interrupted!"
+# A C function that never returns to Lua (backtracking for years) cannot be interrupted: once
+# a SIGINT has waited a second, the next one ends the process with a message.
+start_looping 'print("finding") io.stdout:flush() string.find(string.rep("a", 40) .. "b", string.rep("a*", 40) .. "c")'
+kill -INT "$looping" || true
+sleep 1.2
+kill -INT "$looping" || true
+case_name="SIGINT in a C function that does not return"
+wait_or_kill "$looping"
+expect_status 130
+expect_stderr_contains "rigidlab: ended by Ctrl-C: a C function has not returned to Lua since the first one"
 
 # The first argument names a command unless a file of that name exists.
 run "lessons is a command" -- "$rigidlab" lessons extra

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Ctrl-C and Tab in the REPL whatever the code does (issue 12, item 10), driven through tmux:
+# Ctrl-C stops a loop inside a coroutine (hooks are per thread) and inside a script's own hook
+# setup; a second Ctrl-C does not kill the REPL; Tab completion runs none of the user's code,
+# so an __index that loops on _G cannot hang it. Exit 77 (CTest: skipped) without tmux.
+# Usage: repl_interrupt_test.sh PATH_TO_RIGIDLAB
+set -euo pipefail
+source "$(dirname "$0")/testlib.sh" "$1"
+source "$(dirname "$0")/terminal.sh"
+
+start HOME="$home"
+wait_for "first prompt" '^> $'
+
+enter 'co = coroutine.wrap(function() print("spinning") while true do end end) co()'
+wait_for "a loop inside a coroutine runs" '^spinning$'
+key C-c
+wait_for "Ctrl-C interrupts it" '^(\^C)?stdin:1: interrupted!$'
+enter '2*3'
+wait_for "the REPL goes on" '^6$'
+
+enter 'co = coroutine.create(function() print("nested") while true do end end) coroutine.resume(co)'
+wait_for "a loop inside coroutine.resume runs" '^nested$'
+key C-c
+enter 'print(coroutine.status(co))'
+wait_for "Ctrl-C ends the coroutine; resume returns its error" '^dead$'
+
+enter 'co = coroutine.wrap(function() debug.sethook() print("unhooked") while true do end end) co()'
+wait_for "a coroutine that clears its hook runs" '^unhooked$'
+key C-c
+wait_for "Ctrl-C still interrupts it" '^(\^C)?stdin:1: interrupted!$'
+
+# Ctrl-C twice in a row: the second one must not kill the REPL.
+enter 'co = coroutine.wrap(function() print("twice") for i = 1, 1e12 do end end) co()'
+wait_for "another loop" '^twice$'
+key C-c
+key C-c
+enter '7*6'
+wait_for "two Ctrl-Cs: the REPL is still there" '^42$'
+
+# Tab runs no user code: an __index on _G that loops forever, reached by the completion of a
+# method of a value whose type name (__name) is no global.
+enter 'setmetatable(_G, {__index = function() while true do end end})'
+enter 'x = setmetatable({}, {__name = "no_such_type"})'
+type_text 'x:'
+key Tab
+sleep 0.3
+key C-c
+enter '5*5'
+wait_for "Tab on a value whose type loops in _G's __index returns" '^25$'
+type_text 'no_such_glo'
+key Tab
+sleep 0.3
+key C-c
+enter '4*4'
+wait_for "Tab on a missing global returns" '^16$'
+
+key C-d
+wait_exit "Ctrl-D at the prompt exits 0" 0
+
+finish
