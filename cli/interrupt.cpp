@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include "cli/hook_guard.hpp"
+#include "cli/limits.hpp"
 
 namespace rigidlab::cli {
 namespace {
@@ -47,9 +48,14 @@ struct sigaction action(void (*handler)(int)) {
   return result;
 }
 
+MemoryBudget* budget_of(lua_State* L) {
+  LimitedState* state = LimitedState::of(L);
+  return state != nullptr ? &state->budget() : nullptr;
+}
+
 }  // namespace
 
-InterruptibleCall::InterruptibleCall(lua_State* L) {
+InterruptibleCall::InterruptibleCall(lua_State* L) : charge_(budget_of(L)) {
   if (call_depth++ == 0) {
     interrupt_pending = 0;
     const struct sigaction handler = action(on_sigint_while_running);

@@ -15,9 +15,12 @@
 #include <lua.hpp>
 #include <signal.h>
 
+#include "cli/memory_budget.hpp"
+
 namespace rigidlab::cli {
 
-// While alive, the Lua code called in L is the user's: Ctrl-C interrupts it, and the limits'
+// While alive, the Lua code called in L is the user's: Ctrl-C interrupts it, the C++ memory it
+// allocates (the engine's) is charged to the memory limit of L's LimitedState, and the limits'
 // hook is guarded against debug.sethook (cli/hook_guard.hpp). Restores the previous SIGINT
 // action when destroyed. Nests.
 class InterruptibleCall {
@@ -29,6 +32,7 @@ class InterruptibleCall {
 
  private:
   struct sigaction previous_ {};
+  ChargeHeap charge_;
 };
 
 // True when a Ctrl-C is waiting to be raised; clear_interrupt forgets it (it is being raised).

@@ -15,9 +15,9 @@ namespace rigidlab::cli {
 namespace {
 
 const char registry_key = 0;  // the LimitedState of a state, for LimitedState::of
-// Heap growth (bytes) that makes the hook tell Lua's collector: a world's engine memory is
-// invisible to it, and garbage worlds would otherwise wait for Lua's own allocations.
-constexpr std::size_t collector_nudge_bytes = 64 * 1024;
+// Engine memory (bytes) that may be allocated past twice what was held after the last full
+// collection before the hook runs another (LimitedState::collect_engine_garbage).
+constexpr std::size_t collection_slack_bytes = 1 << 20;
 
 std::size_t bytes_of(double megabytes) {
   return static_cast<std::size_t>(std::ceil(megabytes * (1 << 20)));
@@ -172,7 +172,7 @@ void LimitedState::hook(lua_State* L, lua_Debug* ar) {
   if (ar->event == LUA_HOOKCOUNT) {
     self->instructions_ += lua_gethookcount(L);
     self->check(L);
-    self->nudge_collector(L);
+    self->collect_engine_garbage(L);
   }
   run_script_hook(L, ar);
 }
@@ -184,15 +184,19 @@ void LimitedState::check(lua_State* L) {
   if (deadline_passed_.load(std::memory_order_relaxed)) raise_stop(L, Hit::time);
 }
 
-// Engine memory that grew since the last report is added to the collector's debt, as if Lua
-// had allocated it, so that garbage worlds are finalised at the pace they take memory.
-void LimitedState::nudge_collector(lua_State* L) {
+// Lua's collector sees a world as its small userdata, not the engine memory it holds, and in
+// generational mode a garbage world that has grown old waits for a major collection, which
+// only Lua's own growth triggers: a loop that makes big worlds would reach the memory limit
+// with garbage. So when the C++ heap has grown past twice what it held after the last full
+// collection (plus a slack), a full collection runs here, finalisers included (the hook is
+// a safe point for them, as any allocation in Lua code is). Its cost stays proportional to
+// what is allocated, as with Lua's own major collections.
+void LimitedState::collect_engine_garbage(lua_State* L) {
   const std::size_t growth = budget_.heap_growth();
-  if (growth < heap_seen_by_collector_) heap_seen_by_collector_ = growth;
-  const std::size_t fresh = growth - heap_seen_by_collector_;
-  if (fresh < collector_nudge_bytes) return;
-  heap_seen_by_collector_ = growth;
-  lua_gc(L, LUA_GCSTEP, static_cast<int>(std::min<std::size_t>(fresh / 1024, INT_MAX)));
+  heap_after_collection_ = std::min(heap_after_collection_, growth);
+  if (growth - heap_after_collection_ <= heap_after_collection_ + collection_slack_bytes) return;
+  lua_gc(L, LUA_GCCOLLECT);
+  heap_after_collection_ = budget_.heap_growth();
 }
 
 // The stop check of the bindings (lua/binding.hpp): two flag reads.

@@ -85,7 +85,7 @@ class LimitedState {
   static void hook(lua_State* L, lua_Debug* ar);
   static void stop_check(lua_State* L, void* self);
   void check(lua_State* L);
-  void nudge_collector(lua_State* L);
+  void collect_engine_garbage(lua_State* L);
   [[noreturn]] void raise_stop(lua_State* L, Hit hit);
   // The words of limit_hit, written into `text` (no allocation: the hook writes them).
   void describe(Hit hit, char* text, std::size_t size) const;
@@ -96,7 +96,7 @@ class LimitedState {
   lua_State* state_ = nullptr;
   long long instructions_ = 0;
   Hit hit_ = Hit::none;
-  std::size_t heap_seen_by_collector_ = 0;  // heap growth already reported to Lua's collector
+  std::size_t heap_after_collection_ = 0;  // the heap's growth after the last full collection
   char stop_message_[256] = "";  // the last limit's or Ctrl-C's error, position included
   std::atomic<bool> deadline_passed_{false};
   double seconds_left_ = 0.0;  // of the time limit, for resume_run

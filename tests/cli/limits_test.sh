@@ -51,6 +51,47 @@ expect_status 1
 expect_stderr_line 1 "rigidlab: stopped: the memory limit (32 MB) reached"
 expect_stderr_line_count 1
 
+# The engine's memory counts against the same limit (issue 12, item 6): planes without end,
+# and the contacts of 2000 overlapping spheres in one w:step (1.6 GB without the limit).
+run "planes without end: the memory limit" -- \
+  "$rigidlab" --max-memory 16 -e 'local w = world{} for i = 1, 5e6 do w:add_plane() end'
+expect_status 1
+expect_stderr_line 1 "rigidlab: stopped: the memory limit (16 MB) reached"
+expect_stderr_line_count 1
+# A plane holds at least a normal and an offset (32 bytes), so at most 16 MB / 32 fit; the
+# failed add changes nothing and the world goes on.
+cat >"$scratch/planes.lua" <<'EOF'
+local w, n = world{}, 0
+local ok, message = pcall(function() for i = 1, 5e6 do w:add_plane() n = n + 1 end end)
+print(ok, message, n > 1000 and n <= 16 * 2^20 / 32)
+collectgarbage()
+print(pcall(w.step, w, 0.25))
+print(w.time)
+EOF
+run "a failed w:add_plane is Lua's memory error" -- "$rigidlab" --max-memory 16 "$scratch/planes.lua"
+expect_status 0
+expect_stdout $'false\tnot enough memory\ttrue\ntrue\n0.25\n'
+cat >"$scratch/spheres.lua" <<'EOF'
+local w = world{gravity = vec3(0, -9.81, 0)}
+for i = 1, 2000 do w:add(body.sphere{mass = 1, radius = 1, position = vec3(i * 1e-3, 0, 0)}) end
+local b = w:bodies()[1000]
+local p, v = b.position, b.velocity
+print(pcall(w.step, w, 1 / 60))
+print(w.time == 0, b.position == p, b.velocity == v)
+w:step(1 / 60)
+EOF
+run "2000 overlapping spheres: one w:step stops at the limit, undone" -- \
+  "$rigidlab" --max-memory 64 "$scratch/spheres.lua"
+expect_status 1
+expect_stdout $'false\tnot enough memory\ntrue\ttrue\ttrue\n'
+expect_stderr_line 1 "rigidlab: stopped: the memory limit (64 MB) reached"
+# Garbage worlds are collected at the pace their engine memory grows, not only Lua's: a loop
+# of big short-lived worlds fits in a limit a few of them would fill.
+run "garbage worlds do not fill the limit" -- "$rigidlab" --max-memory 16 \
+  -e 'for i = 1, 300 do local w = world{} for j = 1, 5000 do w:add_plane() end end print("ok")'
+expect_status 0
+expect_stdout $'ok\n'
+
 run "a memory limit smaller than the libraries: stopped, not a panic" -- "$rigidlab" --max-memory 0.001 -e 'print(1)'
 expect_status 1
 expect_stdout ""
