@@ -62,3 +62,9 @@ if(NOT TARGET benchmark::benchmark)
 endif()
 
 find_package(Threads REQUIRED)
+
+# Chromium: w:export_html's page is loaded in the headless browser by tests/present.
+find_program(RIGIDLAB_CHROMIUM NAMES chromium chromium-browser)
+if(NOT RIGIDLAB_CHROMIUM)
+  rigidlab_missing("chromium (the browser test of w:export_html's page)" chromium)
+endif()

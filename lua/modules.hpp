@@ -23,5 +23,6 @@ void open_world(lua_State* L, int lib);
 void open_articulation(lua_State* L, int lib);
 void open_render(lua_State* L, int lib);  // after open_world: world methods
 void open_record(lua_State* L, int lib);  // after open_world: world methods
+void open_export_html(lua_State* L, int lib);  // after open_world: world methods
 
 }  // namespace rigidlab::lua

@@ -11,12 +11,13 @@
 #include "present/wireframe.hpp"
 
 namespace rigidlab::lua {
-namespace {
 
+namespace {
 const char* const overlay_names[] = {"frames", "omega", "L", "contacts", "ellipsoid", "joints",
                                      "trail"};
 
-// show = "omega" or {"omega", "L", ...}.
+}  // namespace
+
 void read_show(lua_State* L, int value, const Where& where, RenderRequest& request) {
   auto one = [&](int index) {
     switch (check_option(L, index, where, overlay_names)) {
@@ -40,7 +41,6 @@ void read_show(lua_State* L, int value, const Where& where, RenderRequest& reque
   }
 }
 
-// camera = {eye =, target =, up =, fov =}: each optional.
 void read_camera(lua_State* L, int arg, int value, RenderRequest& request) {
   if (lua_type(L, value) != LUA_TTABLE) Where::field(arg, "camera").type_error(L, value, "table");
   static const char* const fields[] = {"eye", "target", "up", "fov", nullptr};
@@ -66,8 +66,6 @@ void read_camera(lua_State* L, int arg, int value, RenderRequest& request) {
                          "from 1 to 170 (degrees)");
   lua_pop(L, 1);
 }
-
-}  // namespace
 
 RenderRequest check_render_request(lua_State* L, int arg) {
   RenderRequest request;
@@ -95,9 +93,7 @@ RenderRequest check_render_request(lua_State* L, int arg) {
   return request;
 }
 
-bool resolve_camera(const CameraRequest& c, const present::Scene& scene, int width, int height,
-                    present::Camera& camera, std::string& problem) {
-  camera = present::fit_camera(scene, c.fov, width, height);
+bool apply_camera(const CameraRequest& c, present::Camera& camera, std::string& problem) {
   if (c.has_up) camera.up = c.up;
   if (c.has_target && !c.has_eye) {  // keep the default direction and distance
     camera.eye += c.target - camera.target;
@@ -121,8 +117,8 @@ std::string render_world(lua_State* L, int world, const RenderRequest& request) 
   options.style = request.style;
   options.legend = request.legend;
   std::string problem;
-  if (!resolve_camera(request.camera, scene, request.width, request.height, options.camera,
-                      problem))
+  options.camera = present::fit_camera(scene, request.camera.fov, request.width, request.height);
+  if (!apply_camera(request.camera, options.camera, problem))
     arg_error(L, 2, "field 'camera': %s", problem.c_str());
   return present::render_scene(scene, options);
 }

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "lua/binding.hpp"
 #include "lua/render_scene.hpp"
 #include "present/camera.hpp"
 #include "present/style.hpp"
@@ -28,15 +29,21 @@ struct RenderRequest {
   bool legend = true;
 };
 
+// Option fields shared with w:view and w:export_html. show = "omega" or {"omega", "L", ...} at
+// stack index `value`; camera = {eye =, target =, up =, fov =} (each optional) at `value`,
+// a field of the option table at `arg`.
+void read_show(lua_State* L, int value, const Where& where, RenderRequest& request);
+void read_camera(lua_State* L, int arg, int value, RenderRequest& request);
+
 // Reads the option table at `arg` (absent: the defaults); errors name its fields. The style
 // defaults to the terminal's (stdout): Unicode in a UTF-8 locale, colour in a terminal
 // without NO_COLOR.
 RenderRequest check_render_request(lua_State* L, int arg);
 
-// The camera the request asks for, the parts left out framing `scene`; false (and `problem`)
-// when the parts given cannot make a camera.
-bool resolve_camera(const CameraRequest& request, const present::Scene& scene, int width,
-                    int height, present::Camera& camera, std::string& problem);
+// The camera the request asks for: `camera` holds the default framing (its fov is the
+// request's) and gets the parts the request gives; false (and `problem`) when they cannot
+// make a camera.
+bool apply_camera(const CameraRequest& request, present::Camera& camera, std::string& problem);
 
 // The frame of the world at stack index `world` (options read already from the table at stack
 // index 2, which errors blame): the scene with the

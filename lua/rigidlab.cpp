@@ -26,6 +26,7 @@ int open_library(lua_State* L) {
   open_articulation(L, lib);
   open_render(L, lib);
   open_record(L, lib);
+  open_export_html(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;

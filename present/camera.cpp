@@ -69,7 +69,7 @@ Camera fit_camera(const Scene& scene, double fov, int columns, int rows, double 
   const double half_v = fov * pi / 360;
   const double frame_aspect = columns / (rows * cell_aspect);  // width over height
   const double half_h = std::atan(std::tan(half_v) * frame_aspect);
-  const double distance = 1.05 * radius / std::sin(std::min(half_v, half_h));
+  const double distance = 1.1 * radius / std::sin(std::min(half_v, half_h));
   Camera camera;
   camera.target = center;
   camera.eye = center + distance * direction;

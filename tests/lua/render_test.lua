@@ -112,4 +112,26 @@ T.case("errors", function()
   T.fails(function() world.render(5) end, "world expected, got number")
 end)
 
+T.case("export_html runs the world on and writes one page", function()
+  local w = spinning_box()
+  local path = os.tmpname()
+  T.equal(w:export_html(path, {seconds = 0.5, fps = 10, show = {"omega", "trail"}}), 6, "frames")
+  T.near(w.time, 0.5, 1e-12, "the world ran on")
+  local page = io.open(path):read("a")
+  os.remove(path)
+  assert(page:find("^<!DOCTYPE html>") and page:find("</html>\n$"), "a whole page")
+  local _, frames = page:gsub('{"t":', "")
+  T.equal(frames, 6, "one frame of data per frame")
+  T.fails(function() w:export_html(path, {seconds = -1}) end,
+    "bad argument #2 to 'world:export_html' (field 'seconds' must be in [0, 3600] (s), got -1)")
+  T.fails(function() w:export_html(path, {fps = 1e9}) end, "field 'fps' must be from 1 to 240")
+  T.fails(function() w:export_html(path, {seconds = 3600, fps = 240}) end,
+    "seconds x fps must be at most 20000 frames")
+  T.fails(function() w:export_html(path, {show = "spin"}) end, "field 'show' must be one of")
+  T.fails(function() w:export_html(path .. "\0x") end, "may not contain a NUL byte")
+  T.fails(function() w:export_html("/dev/full", {seconds = 0}) end,
+    "bad argument #1 to 'world:export_html' (cannot write '/dev/full': No space left on device)")
+  T.fails(function() w:export_html(path, {dt = 0}) end, "field 'dt'")
+end)
+
 T.finish()
