@@ -14,38 +14,10 @@
 #include <cstring>
 #include <string>
 
+#include "alloc_injector.hpp"
 #include "lua/rigidlab.hpp"
 
 namespace {
-
-// Counts the allocations that grow a block and refuses those from `first_refused` on
-// (`refuse_one`: only that one).
-struct Injector {
-  long count = 0;
-  long first_refused = -1;
-  bool refuse_one = true;
-  bool refused = false;
-
-  static void* allocate(void* self_pointer, void* block, std::size_t old_size,
-                        std::size_t new_size) {
-    auto& self = *static_cast<Injector*>(self_pointer);
-    const std::size_t old_bytes = block != nullptr ? old_size : 0;
-    if (new_size == 0) {
-      std::free(block);
-      return nullptr;
-    }
-    if (new_size > old_bytes) {
-      ++self.count;
-      const bool refuse = self.refuse_one ? self.count == self.first_refused
-                                          : self.first_refused > 0 && self.count >= self.first_refused;
-      if (refuse) {
-        self.refused = true;
-        return nullptr;
-      }
-    }
-    return std::realloc(block, new_size);
-  }
-};
 
 // Every kind of object and call: worlds with contacts, springs, drag and a Lua force, removal
 // and collection, the math types, inertia, motion, ode, collide, lesson, csv.
