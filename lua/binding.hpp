@@ -138,7 +138,7 @@ class Where {
 // metatable.
 const char* value_type_name(lua_State* L, int index);
 // The value at `index` as a message shows what came: a number as Lua prints it but %.14g for
-// floats (1e+12, not 1000000000000.0), a string quoted ('verlet'), a vec3 or quat as
+// floats (1e+12, not 1000000000000.0), a string quoted ('verlet'), a vec3, mat3 or quat as
 // tostring gives it, anything else by its type name ("table"). Pushes the string.
 const char* push_shown_value(lua_State* L, int index);
 // The key at `index` as a field name in messages, pushed: a string or a number as itself,
@@ -250,8 +250,10 @@ T* test_tagged(lua_State* L, int index, std::uint64_t tag) {
   return &box->value;
 }
 
+// `value` is taken by copy before the allocation: the allocation may run a finaliser (any Lua
+// code), which may move or free what a reference would point into (a body's store).
 template <class T>
-T& push_tagged(lua_State* L, const T& value, std::uint64_t tag, const void* metatable_key) {
+T& push_tagged(lua_State* L, T value, std::uint64_t tag, const void* metatable_key) {
   void* memory = lua_newuserdatauv(L, sizeof(Tagged<T>), 0);
   auto* box = new (memory) Tagged<T>{tag, value};
   lua_rawgetp(L, LUA_REGISTRYINDEX, metatable_key);
