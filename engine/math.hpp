@@ -44,6 +44,9 @@ struct SymmetricEigen {
   Mat3 axes;
 };
 SymmetricEigen symmetric_eigen(const Mat3& symmetric);
+// The symmetric part ½(M + Mᵀ), halved before adding so that it is finite for every finite M:
+// M + Mᵀ overflows for entries near the largest double (mat3.diag(1e308, 1, 1) gave NaN).
+inline Mat3 symmetric_part(const Mat3& m) { return 0.5 * m + 0.5 * m.transpose(); }
 
 // Euclidean length and direction without overflow or underflow in the squares: the plain
 // v / sqrt(v·v) turns (1e300, 1e300, 0) into (0, 0, 0) (v·v overflows to inf) and

@@ -171,6 +171,17 @@ const char* push_shown_value(lua_State* L, int index) {
   if (const Vec3* v = test_vec3(L, index))
     return lua_pushfstring(L, "(%s, %s, %s)", format_number(v->x()).c_str(),
                            format_number(v->y()).c_str(), format_number(v->z()).c_str());
+  if (const Mat3* m = test_mat3(L, index)) {
+    luaL_Buffer text;
+    luaL_buffinit(L, &text);
+    for (int k = 0; k < 9; ++k) {
+      luaL_addstring(&text, k == 0 ? "((" : k % 3 == 0 ? "), (" : ", ");
+      luaL_addstring(&text, format_number((*m)(k / 3, k % 3)).c_str());
+    }
+    luaL_addstring(&text, "))");
+    luaL_pushresult(&text);
+    return lua_tostring(L, -1);
+  }
   if (const Quat* q = test_quat(L, index))
     return lua_pushfstring(L, "quat(%s, %s, %s, %s)", format_number(q->w()).c_str(),
                            format_number(q->x()).c_str(), format_number(q->y()).c_str(),

@@ -203,7 +203,11 @@ int mat3_eigen(lua_State* L) {
   if (asymmetry(m) > 1e-12 * scale)
     arg_error(L, 1, "matrix must be symmetric (largest |a_ij - a_ji| = %s)",
               format_number(asymmetry(m)).c_str());
-  const SymmetricEigen e = symmetric_eigen(0.5 * (m + m.transpose()));
+  const SymmetricEigen e = symmetric_eigen(symmetric_part(m));
+  // The eigenvalues of a finite matrix can exceed the largest double (by up to a factor 3).
+  if (!is_finite(e.values) || !is_finite(e.axes))
+    arg_error(L, 1, "the eigenvalues are not finite (the largest overflows the largest double, "
+                    "1.8e308)");
   push_vec3(L, e.values);
   push_mat3(L, e.axes);
   return 2;

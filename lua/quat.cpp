@@ -54,8 +54,11 @@ int quat_axis_angle_new(lua_State* L) {
 int quat_from_mat3(lua_State* L) {
   const Mat3& r = check_mat3(L, 1);
   check_no_extra_args(L, 1);
+  // A mat3 can hold inf (a static body's tensor): its products would hold NaN, which no
+  // comparison refuses, and the quaternion would be NaN.
+  if (!is_finite(r)) arg_error(L, 1, "matrix must be finite, got %s", push_shown_value(L, 1));
   const double orthonormality = (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (orthonormality > 1e-9)
+  if (!(orthonormality <= 1e-9))
     arg_error(L, 1, "matrix is not orthonormal (largest |RᵀR - E| entry = %s)",
               format_number(orthonormality).c_str());
   if (r.determinant() < 0.0) arg_error(L, 1, "matrix is a reflection (det = -1), not a rotation");

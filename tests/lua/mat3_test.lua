@@ -62,6 +62,25 @@ T.case("eigen on random symmetric matrices", function()
   T.near(axes:col(1), vec3(0, 1, 0), 0, "axis of the smallest value")
 end)
 
+-- Issue 12 item 11: symmetrising as ½(M + Mᵀ) overflowed for entries near the largest double
+-- and gave (nan, nan, nan). A diagonal matrix is its own decomposition.
+T.case("eigen of matrices with entries near the largest double", function()
+  local values, axes = mat3.diag(1e308, 1, 1):eigen()
+  -- The solver works on M / 1e308: the small values carry that scale's rounding (an ulp).
+  T.near(values.x, 1, 2e-16, "1"); T.near(values.y, 1, 2e-16, "1")
+  T.equal(values.z, 1e308, "1e308")
+  T.near(axes:col(3), vec3(1, 0, 0), 0, "the axis of 1e308")
+  T.near(axes:det(), 1, 1e-15, "right-handed")
+  local big = 1.5e308  -- M = big·(outer of (1, 1, 0)/√2) + ... has the eigenvalue 2·big: inf
+  T.fails(function() return mat3(big, big, 0, big, big, 0, 0, 0, 1):eigen() end,
+    "calling 'mat3:eigen' on bad self (the eigenvalues are not finite (the largest overflows " ..
+    "the largest double, 1.8e308))", "eigenvalue 3e308")
+  -- Still exact where it fits: [[a, a], [a, a]] has eigenvalues 0 and 2a.
+  local a = 0.8e308
+  local v2 = mat3(a, a, 0, a, a, 0, 0, 0, 1):eigen()
+  T.near(v2, vec3(0, 1, 2 * a), 1e-15 * 2 * a, "eigenvalues 0, 1, 1.6e308")
+end)
+
 T.case("inverse: decided on the equilibrated matrix, so scale alone is not singularity", function()
   T.equal(mat3.diag(1e308, 1, 1):inverse(), mat3.diag(1e-308, 1, 1), "huge entry")
   T.equal(mat3.diag(1e-6, 2e-6, 4e-6):inverse(), mat3.diag(1e6, 5e5, 2.5e5), "small tensor")

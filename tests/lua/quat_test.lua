@@ -80,6 +80,16 @@ T.case("errors", function()
     "reflection")
   T.fails(function() return quat.from_mat3(mat3.diag(2, 1, 1)) end,
     "matrix is not orthonormal", "scaled")
+  -- Issue 12 item 11: a quaternion is finite or refused, whatever the matrix holds.
+  T.fails(function() return quat.from_mat3(mat3.diag(1e308, 1, 1)) end,
+    "bad argument #1 to 'quat.from_mat3' (matrix is not orthonormal (largest |RᵀR - E| entry = " ..
+    "inf))", "RᵀR overflows")
+  T.fails(function() return quat.from_mat3(body{static = true}.inertia) end,
+    "bad argument #1 to 'quat.from_mat3' (matrix must be finite, got ((inf, 0, 0), (0, inf, 0), " ..
+    "(0, 0, inf)))", "an infinite matrix: its products hold NaN, which passed the check")
+  local _, axes = mat3.diag(1e308, 1, 1):eigen()
+  local q = quat.from_mat3(axes)
+  T.equal(q.w == q.w and q:norm() > 0.99, true, "the eigen axes of a huge matrix give a rotation")
   T.fails(function() return quat() * vec3() end, "quat * vec3 is not defined: use q:rotate(v)",
     "q * v")
   T.fails(function() return quat():rotate(5) end,
