@@ -37,6 +37,9 @@ return {
   {"inertia.points({{mass = 0, pos = vec3()}})", "bad argument #1 to 'inertia.points' (entry 1: field 'mass' must be > 0, got 0)"},
   {"inertia.points({{mass = 1}})", "bad argument #1 to 'inertia.points' (entry 1: field 'pos'"},
   {"inertia.points({{mass = 1, pos = 5}})", "bad argument #1 to 'inertia.points' (entry 1: field 'pos'"},
+  -- issue 12 item 23: a non-finite position used to read "'inertia.points': position must be finite".
+  {"inertia.points({{mass = 1, pos = v}, {mass = 2, pos = body{static = true}.inertia:row(2)}})", "bad argument #1 to 'inertia.points' (entry 2: field 'pos' must be finite, got (0, inf, 0))"},
+  {"inertia.composite({{mass = 1, com = body{static = true}.inertia:row(1), inertia = m}})", "bad argument #1 to 'inertia.composite' (entry 1: field 'com' must be finite, got (inf, 0, 0))"},
   {"inertia.points({{mass = 1, pos = v}, 5})", "bad argument #1 to 'inertia.points' (entry 2"},
   {"inertia.points({{mass = 1, pos = v, colour = 1}})", "bad argument #1 to 'inertia.points' (entry 1: unknown field 'colour'"},
   {"inertia.parallel_axis(m, -1, v)", "bad argument #2 to 'inertia.parallel_axis' (mass must be > 0, got -1)"},

@@ -78,6 +78,9 @@ return {
   {"w:add_plane{normal = vec3(0, 1, 0), offset = 0, restitution = 2}", "bad argument #1 to 'world:add_plane' (field 'restitution'"},
   {"w:add_plane{normal = vec3(0, 1, 0), offset = 0, friction = -1}", "bad argument #1 to 'world:add_plane' (field 'friction'"},
   {"w:add_plane{normal = vec3(0, 1, 0), offset = " .. Inf .. "}", "bad argument #1 to 'world:add_plane' (field 'offset' must be finite, got inf)"},
+  -- issue 12 item 23: these two used to read "'world:add_plane': offset / |normal| ...".
+  {"w:add_plane{normal = vec3(1e-300, 0, 0), offset = 1e10}", "bad argument #1 to 'world:add_plane' (offset / |normal| must be finite, got inf (the normal is too short))"},
+  {"w:add_plane{normal = vec3(0, -1e-300, 1e-300), offset = -1e300}", "bad argument #1 to 'world:add_plane' (offset / |normal| must be finite, got -inf (the normal is too short))"},
   {"w:add_plane{normal = 1}", "bad argument #1 to 'world:add_plane' (field 'normal' must be a vec3, got number)"},
   {"w:add_plane{normal = v, colour = 1}", "bad argument #1 to 'world:add_plane' (unknown field 'colour'"},
   {"w:add_plane(5)", "bad argument #1 to 'world:add_plane' (table expected, got number)"},
