@@ -53,7 +53,7 @@ void print_result(const CheckResult& r) {
 // The child tells the parent how far it got ("id ID", "tally PASSED FAILED" after each step)
 // and "done" once it has printed its result; without "done" the parent reports the lesson.
 struct ChildJob {
-  const fs::path* path;
+  const LessonFile* file;
   LimitedState* state;
   int report_fd;
   CheckResult* result;
@@ -67,12 +67,12 @@ int check_protected(lua_State* L) {
   CheckResult& result = *job.result;
   lua_settop(L, 0);
   rigidlab::lua::open_all(L);
-  if (!trusted(*job.path)) rigidlab::lua::apply_sandbox(L);
+  if (!job.file->trusted) rigidlab::lua::apply_sandbox(L);
   lua_pushcfunction(L, [](lua_State*) { return 0; });  // one line per lesson: print is silenced
   lua_setglobal(L, "print");
   LoadedLesson lesson;
   std::string error;
-  if (!load_lesson(L, *job.path, lesson, error)) {
+  if (!load_lesson(L, *job.file, lesson, error)) {
     result.error = job.state->explain(error);
     return 0;
   }
@@ -96,16 +96,16 @@ int check_protected(lua_State* L) {
   return 0;
 }
 
-int check_in_child(const fs::path& path, const Limits& limits, int report_fd) {
+int check_in_child(const LessonFile& file, const Limits& limits, int report_fd) {
   const Clock::time_point start = Clock::now();
   CheckResult result;
-  result.id = path.stem().string();
+  result.id = file.id;
   rigidlab::lua::LessonContext context;  // before the state: the ctx points to it
   {
     LimitedState state(limits, WhenStuck::leave_to_parent);
     if (lua_State* L = state.get()) {
       state.begin_run();
-      ChildJob job{&path, &state, report_fd, &result, &context};
+      ChildJob job{&file, &state, report_fd, &result, &context};
       lua_pushcfunction(L, check_protected);
       lua_pushlightuserdata(L, &job);
       if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
@@ -151,14 +151,14 @@ std::string abnormal_end(const ChildOutcome& outcome, const Limits& limits) {
 }
 
 // Checks one lesson in a child process; prints its result. True when it passed.
-bool check_one(const fs::path& path, const Limits& limits) {
+bool check_one(const LessonFile& file, const Limits& limits) {
   const Clock::time_point start = Clock::now();
   const double deadline =
       limits.timeout_seconds > 0.0 ? limits.timeout_seconds + stuck_grace_seconds : 0.0;
   const ChildOutcome outcome = run_in_child(
-      [&](int report_fd) { return check_in_child(path, limits, report_fd); }, deadline);
+      [&](int report_fd) { return check_in_child(file, limits, report_fd); }, deadline);
   CheckResult result;
-  result.id = path.stem().string();
+  result.id = file.id;
   bool done = false;
   std::istringstream lines(outcome.report);
   for (std::string line; std::getline(lines, line);) {
@@ -174,23 +174,54 @@ bool check_one(const fs::path& path, const Limits& limits) {
   return false;
 }
 
-int check_lessons(const std::vector<std::string>& ids_or_files, const Limits& limits) {
-  std::vector<fs::path> paths;
-  if (ids_or_files.empty()) {
-    paths = lesson_files();
-  } else {
-    for (const std::string& name : ids_or_files) {
-      fs::path path;
-      std::string error;
-      if (!resolve_lesson(name, path, error)) {
-        std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
-        return exit_usage;
-      }
-      paths.push_back(path);
-    }
+// A lesson that could not be checked (an id defined twice, a folder that cannot be read): a
+// failed lesson with its reason.
+void print_problem(const std::string& problem) {
+  CheckResult result;
+  const size_t quote = problem.find('\'');
+  result.id = problem.rfind("lesson '", 0) == 0
+                  ? problem.substr(quote + 1, problem.find('\'', quote + 1) - quote - 1)
+                  : "(folder)";
+  result.error = problem;
+  print_result(result);
+}
+
+// The lessons an argument names: a folder's (DIR), or one (ID, FILE). False after a usage
+// error's message.
+bool add_lessons(const LessonCatalog& catalog, const std::string& name,
+                 std::vector<LessonFile>& lessons) {
+  std::error_code code;
+  if (name.find('/') != std::string::npos && fs::is_directory(name, code)) {
+    std::string error;
+    if (folder_lessons(catalog, name, lessons, error)) return true;
+    std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
+    return false;
   }
+  LessonFile file;
+  std::string error;
+  if (!resolve_lesson(catalog, name, file, error)) {
+    std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
+    return false;
+  }
+  lessons.push_back(file);
+  return true;
+}
+
+int check_lessons(const std::vector<std::string>& names, const Limits& limits) {
+  const LessonCatalog catalog = read_catalog();
+  std::vector<LessonFile> lessons;
   int passed = 0, failed = 0;
-  for (const fs::path& path : paths) (check_one(path, limits) ? passed : failed)++;
+  if (names.empty()) {
+    lessons = catalog.lessons;
+    for (const std::string& problem : catalog.problems) {
+      print_problem(problem);
+      ++failed;
+    }
+  } else {
+    for (const std::string& name : names)
+      if (!add_lessons(catalog, name, lessons)) return exit_usage;
+  }
+  for (const LessonFile& file : lessons) (check_one(file, limits) ? passed : failed)++;
   std::printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 && passed > 0 ? 0 : 1;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "cli/interrupt.hpp"
 #include "lua/rigidlab.hpp"
@@ -17,57 +18,154 @@ namespace {
 // A name as messages show it: a 300-character argument would bury the message.
 std::string shown_name(const std::string& name) { return lua::truncate_to_width(name, 60); }
 
-bool is_lesson_id(const std::string& name) {
-  return !name.empty() && name.size() <= 100 &&
-         name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") == std::string::npos;
+// The .lua files of `dir` in its tour order; false with the reason when it cannot be read.
+bool tour_files(const fs::path& dir, std::vector<fs::path>& ordered, std::string& error) {
+  std::vector<fs::path> all;
+  std::error_code code;
+  // increment(code), not ++: a folder that cannot be read is a message, it does not throw
+  fs::directory_iterator it(dir, code), end;
+  for (; !code && it != end; it.increment(code))
+    if (it->path().extension() == ".lua") all.push_back(it->path());
+  if (code) {
+    error = "cannot read the lesson folder '" + shown_name(dir.string()) + "': " + code.message();
+    return false;
+  }
+  std::sort(all.begin(), all.end());
+  std::ifstream tour(dir / "tour.txt");
+  for (std::string id; std::getline(tour, id);) {
+    if (id.empty() || id[0] == '#') continue;
+    auto found = std::find(all.begin(), all.end(), dir / (id + ".lua"));
+    if (found != all.end()) {
+      ordered.push_back(*found);
+      all.erase(found);
+    }
+  }
+  ordered.insert(ordered.end(), all.begin(), all.end());
+  return true;
+}
+
+// The folder of `path`, resolved (symlinks, "..") for comparing folders; "" when it fails.
+fs::path canonical_folder(const fs::path& path) {
+  std::error_code code;
+  fs::path folder = fs::weakly_canonical(path, code);
+  return code ? fs::path() : folder;
+}
+
+// The index of the catalog folder that holds the file `path`, or -1.
+int folder_of(const LessonCatalog& catalog, const fs::path& path) {
+  const fs::path parent = canonical_folder(path).parent_path();
+  if (parent.empty()) return -1;
+  for (size_t i = 0; i < catalog.folders.size(); ++i)
+    if (canonical_folder(catalog.folders[i].path) == parent) return static_cast<int>(i);
+  return -1;
+}
+
+LessonFile make_lesson_file(const LessonCatalog& catalog, const fs::path& path) {
+  LessonFile file;
+  file.path = path;
+  file.id = path.stem().string();
+  file.folder = folder_of(catalog, path);
+  file.trusted = file.folder >= 0;
+  return file;
 }
 
 }  // namespace
+
+const LessonFile* LessonCatalog::find(const std::string& id) const {
+  for (const LessonFile& lesson : lessons)
+    if (lesson.id == id) return &lesson;
+  return nullptr;
+}
+
+const LessonFile* LessonCatalog::next(const LessonFile& lesson) const {
+  if (lesson.folder < 0) return nullptr;
+  for (size_t i = 0; i + 1 < lessons.size(); ++i)
+    if (lessons[i].id == lesson.id && lessons[i].folder == lesson.folder) return &lessons[i + 1];
+  return nullptr;
+}
+
+std::string LessonCatalog::origin(const LessonFile& lesson) const {
+  if (lesson.folder < 0)
+    return lesson.path.parent_path().string() + " (not a lesson folder: runs in the sandbox)";
+  const LessonFolder& folder = folders[static_cast<size_t>(lesson.folder)];
+  return folder.built_in ? "built-in" : folder.path.string();
+}
+
+LessonCatalog read_catalog() {
+  LessonCatalog catalog;
+  catalog.folders.push_back({RIGIDLAB_LESSON_DIR, true});
+  if (const char* list = std::getenv("RIGIDLAB_LESSONS")) {
+    std::istringstream entries(list);
+    for (std::string entry; std::getline(entries, entry, ':');) {
+      if (entry.empty()) continue;
+      const fs::path folder = canonical_folder(entry);
+      const bool repeated = std::any_of(
+          catalog.folders.begin(), catalog.folders.end(),
+          [&](const LessonFolder& f) { return !folder.empty() && canonical_folder(f.path) == folder; });
+      if (!repeated) catalog.folders.push_back({entry, false});
+    }
+  }
+  for (size_t i = 0; i < catalog.folders.size(); ++i) {
+    std::vector<fs::path> files;
+    std::string error;
+    if (!tour_files(catalog.folders[i].path, files, error)) {
+      catalog.problems.push_back(error);
+      continue;
+    }
+    for (const fs::path& path : files) {
+      LessonFile file{path, path.stem().string(), static_cast<int>(i), true, true};
+      if (const LessonFile* first = catalog.find(file.id))
+        catalog.problems.push_back("lesson '" + file.id + "' is defined twice: " +
+                                   first->path.string() + " and " + path.string());
+      else
+        catalog.lessons.push_back(file);
+    }
+  }
+  return catalog;
+}
+
+bool folder_lessons(const LessonCatalog& catalog, const fs::path& dir,
+                    std::vector<LessonFile>& lessons, std::string& error) {
+  std::vector<fs::path> files;
+  if (!tour_files(dir, files, error)) return false;
+  for (const fs::path& path : files) {
+    LessonFile file = make_lesson_file(catalog, path);
+    file.named_by_id = true;
+    lessons.push_back(file);
+  }
+  return true;
+}
 
 std::string no_lesson_message(const std::string& name) {
   return "no lesson '" + shown_name(name) + "' (rigidlab lessons lists them)";
 }
 
-fs::path lesson_directory() {
-  if (const char* dir = std::getenv("RIGIDLAB_LESSONS"); dir != nullptr && *dir != '\0')
-    return dir;
-  return RIGIDLAB_LESSON_DIR;
-}
-
-std::vector<fs::path> lesson_files() {
-  const fs::path dir = lesson_directory();
-  std::vector<fs::path> all;
-  std::error_code error;
-  // increment(error), not ++: a folder that cannot be read ends the list, it does not throw
-  for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error))
-    if (it->path().extension() == ".lua") all.push_back(it->path());
-  std::sort(all.begin(), all.end());
-  std::vector<fs::path> ordered;
-  std::ifstream tour(dir / "tour.txt");
-  for (std::string id; std::getline(tour, id);) {
-    if (id.empty() || id[0] == '#') continue;
-    auto it = std::find(all.begin(), all.end(), dir / (id + ".lua"));
-    if (it != all.end()) {
-      ordered.push_back(*it);
-      all.erase(it);
-    }
-  }
-  ordered.insert(ordered.end(), all.begin(), all.end());
-  return ordered;
-}
-
-bool resolve_lesson(const std::string& id_or_file, fs::path& path, std::string& error) {
+bool resolve_lesson(const LessonCatalog& catalog, const std::string& id_or_file,
+                    LessonFile& lesson, std::string& error) {
   const bool is_file_name = id_or_file.find('/') != std::string::npos ||
                             (id_or_file.size() > 4 &&
                              id_or_file.compare(id_or_file.size() - 4, 4, ".lua") == 0);
-  if (!is_file_name && !is_lesson_id(id_or_file)) {  // no file can have that name
+  if (!is_file_name) {  // an id: the catalog has it or nothing has
+    if (const LessonFile* found = catalog.find(id_or_file)) {
+      for (const std::string& problem : catalog.problems)
+        if (problem.rfind("lesson '" + id_or_file + "' is defined twice", 0) == 0) {
+          error = problem + " (rename one of them)";
+          return false;
+        }
+      lesson = *found;
+      return true;
+    }
     error = no_lesson_message(id_or_file);
     return false;
   }
-  path = is_file_name ? fs::path(id_or_file) : lesson_directory() / (id_or_file + ".lua");
+  const fs::path path = id_or_file;
   std::error_code code;
   const fs::file_status status = fs::status(path, code);
-  if (fs::is_regular_file(status)) return true;
+  if (fs::is_regular_file(status)) {
+    lesson = make_lesson_file(catalog, path);
+    lesson.named_by_id = lesson.folder >= 0;
+    return true;
+  }
   if (code && code != std::errc::no_such_file_or_directory && code != std::errc::not_a_directory)
     error = "cannot read lesson '" + shown_name(path.string()) + "': " + code.message();
   else if (fs::exists(status))
@@ -77,15 +175,8 @@ bool resolve_lesson(const std::string& id_or_file, fs::path& path, std::string& 
   return false;
 }
 
-bool trusted(const fs::path& path) {
-  std::error_code error;
-  const fs::path file = fs::weakly_canonical(path, error);
-  if (error) return false;
-  const fs::path dir = fs::weakly_canonical(lesson_directory(), error);
-  return !error && file.parent_path() == dir;
-}
-
-bool load_lesson(lua_State* L, const fs::path& path, LoadedLesson& lesson, std::string& error) {
+bool load_lesson(lua_State* L, const LessonFile& file, LoadedLesson& lesson, std::string& error) {
+  const fs::path& path = file.path;
   lua_pushcfunction(L, lua::traceback_handler);
   const int handler = lua_gettop(L);
   int status = luaL_loadfilex(L, path.c_str(), "t");
@@ -104,6 +195,9 @@ bool load_lesson(lua_State* L, const fs::path& path, LoadedLesson& lesson, std::
     problem = std::string("got ") + lua_typename(L, lua_type(L, -1));
   else if (!lua::read_lesson(L, -1, lesson.spec, problem))
     problem = problem.empty() ? "not a lesson" : problem;
+  else if (file.named_by_id && lesson.spec.id != file.id)
+    problem = "its id is '" + lesson.spec.id + "', but a lesson's file is named after its id: " +
+              lesson.spec.id + ".lua";
   if (!problem.empty()) {
     error = path.string() + ": the file must return lesson{...} (" + problem + ")";
     lua_settop(L, handler - 1);

@@ -1,18 +1,23 @@
 #include "cli/lessons.hpp"
 
-#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
+#include <cstring>
+#include <fstream>
+#include <set>
 
 #include "cli/check.hpp"
 #include "cli/lesson_files.hpp"
+#include "cli/lesson_keys.hpp"
+#include "cli/lesson_menu.hpp"
+#include "cli/lesson_page.hpp"
 #include "cli/limit_options.hpp"
 #include "cli/limits.hpp"
 #include "cli/usage.hpp"
+#include "lua/binding.hpp"
 #include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/sandbox.hpp"
@@ -20,94 +25,45 @@
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
-using lua::display_width;
 
 namespace {
 
-// The terminal's columns, else $COLUMNS, else 0 (unknown: output to a file or a pipe).
-int terminal_width() {
-  winsize size{};
-  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
-  if (const char* columns = std::getenv("COLUMNS")) return std::max(0, std::atoi(columns));
-  return 0;
-}
-
-// Columns a lesson is laid out in: the terminal's, at least 40 (narrower wraps every few
-// words) and at most 100 (longer lines are hard to read); 80 when unknown.
-int lesson_width() {
-  const int columns = terminal_width();
-  return columns == 0 ? 80 : std::clamp(columns, 40, 100);
-}
-
 bool interactive() { return isatty(STDIN_FILENO) && isatty(STDOUT_FILENO); }
 
-// Reads one line of the user's answer, however long; false at end of input.
-bool read_answer(std::string& answer) {
-  answer.clear();
-  for (int c; (c = std::fgetc(stdin)) != EOF;) {
-    if (c == '\n') return true;
-    if (answer.size() < 4096) answer += static_cast<char>(c);  // the rest is read, not kept
-  }
-  return !answer.empty();
-}
-
-void print_step_header(const lua::LessonSpec& spec, int number) {
-  const lua::LessonStep& step = spec.steps[number - 1];
-  const int width = lesson_width();
-  const std::string title = "-- Step " + std::to_string(number) + "/" +
-                            std::to_string(spec.steps.size()) + ": " + step.title;
-  // "-- Step 2/5: title -----" filled to the width; a title too long for one line is wrapped
-  const int rule = width - static_cast<int>(display_width(title)) - 1;
-  if (rule >= 3)
-    std::printf("\n%s %s\n\n", title.c_str(), std::string(rule, '-').c_str());
-  else
-    std::printf("\n%s\n", lua::fit_words_after("-- ", title.substr(3), width).c_str());
-  std::fputs(lua::fit_paragraphs(step.text, "  ", width).c_str(), stdout);
-  if (!step.formula.empty()) {
-    std::printf("\n");
-    std::istringstream lines(step.formula);
-    for (std::string line; std::getline(lines, line);) std::printf("      %s\n", line.c_str());
-  }
-  std::printf("\n");
-}
-
-// "id — title" and the source, one document per line (a source lists them split by "; "),
-// each wrapped to the width under its start; a lesson-wide tolerance with its reason.
-void print_lesson_heading(const lua::LessonSpec& spec, int width) {
-  std::fputs(lua::fit_words_after(spec.id + " — ", spec.title, width).c_str(), stdout);
-  const char* label = "  source: ";
-  for (size_t start = 0; start <= spec.source.size();) {
-    size_t end = spec.source.find("; ", start);
-    if (end == std::string::npos) end = spec.source.size();
-    const std::string document = spec.source.substr(start, end - start);
-    std::fputs(lua::fit_words_after(label, document, width).c_str(), stdout);
-    label = "          ";
-    start = end + 2;
-  }
-  if (spec.has_tolerance)
-    std::fputs(lua::fit_words_after("  tolerance: ", lua::describe_tolerance(spec.tolerance) +
-                                                         " — " + spec.tolerance.reason, width)
-                   .c_str(),
-               stdout);
-}
-
-// The ctx writes to the terminal.
-class TerminalOutput : public lua::LessonOutput {
- public:
-  void write(const std::string& lines) override {
-    std::fwrite(lines.data(), 1, lines.size(), stdout);
-    std::fflush(stdout);
-  }
+struct LessonOptions {
+  const Limits* limits = nullptr;  // the command line's, else the defaults for the lesson
+  int from_step = 1;               // --from
 };
 
-// A lesson being stepped through, and how it went. The context outlives the Lua state (the
-// ctx userdata points to it; see lua/lesson.hpp).
+// What the student chose at the end of a lesson (or by m or q in it).
+enum class Next { next_lesson, menu, quit };
+
+// The latest run of a step: `b` and `r` run a step again and its new result replaces the old.
+struct StepResult {
+  bool ran = false;
+  bool error = false;
+  int passed = 0, failed = 0;
+};
+
+// A lesson being shown, and how it went. It lives outside the Lua state: the ctx points to its
+// context (lua/lesson.hpp).
 struct LessonRun {
-  const fs::path* path = nullptr;
-  TerminalOutput output;
+  const LessonFile* file = nullptr;
+  const LessonCatalog* catalog = nullptr;
+  const LessonOptions* options = nullptr;
+  bool interactive = false;
+  TerminalPage page;
   lua::LessonContext context;
+  std::vector<StepResult> steps;
   bool loaded = false;
-  bool failed = false;
+  bool usage_error = false;  // --from past the last step
+  bool stopped = false;      // a limit ended the lesson
+  Next next = Next::quit;
+
+  bool failed() const {
+    return std::any_of(steps.begin(), steps.end(),
+                       [](const StepResult& s) { return s.error || s.failed > 0; });
+  }
 };
 
 // The limits of a lesson's run. Untrusted lessons run under the check limits, counted over the
@@ -117,9 +73,7 @@ class LessonClock {
   explicit LessonClock(lua_State* L) : state_(LimitedState::of(L)) {
     if (state_ != nullptr) state_->begin_run();
   }
-  ~LessonClock() {
-    if (state_ != nullptr && running_) state_->end_run();
-  }
+  ~LessonClock() { pause(); }
   LessonClock(const LessonClock&) = delete;
   LessonClock& operator=(const LessonClock&) = delete;
   void pause() {
@@ -140,74 +94,353 @@ class LessonClock {
   bool running_ = true;
 };
 
-// Steps through the lesson of the LessonRun (argument 1), in protected mode: an error anywhere
-// is reported, not fatal.
+// print() in a lesson writes to its page, as ctx:say does (upvalue 1: the LessonPage).
+int page_print(lua_State* L) {
+  auto* page = static_cast<LessonPage*>(lua_touserdata(L, lua_upvalueindex(1)));
+  std::string line;
+  for (int i = 1, n = lua_gettop(L); i <= n; ++i) {
+    size_t length = 0;
+    const char* text = luaL_tolstring(L, i, &length);
+    line += (i > 1 ? "\t" : "") + std::string(text, length);
+    lua_pop(L, 1);
+  }
+  page->write(line + "\n");
+  return 0;
+}
+
+// ---- c: a step's code ------------------------------------------------------------------------
+
+// A number as Lua source that reads back as the same double (the shortest of %.15g..%.17g).
+std::string exact_number(double x) {
+  char text[32];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, x);
+    if (std::strtod(text, nullptr) == x) break;
+  }
+  return text;
+}
+
+std::string exact_list(const double* x, int n) {
+  std::string text;
+  for (int i = 0; i < n; ++i) text += (i ? ", " : "") + exact_number(x[i]);
+  return text;
+}
+
+// An upvalue of a step's run function as `c` shows it: a line to paste into the REPL for a
+// value, a comment for a function or a table (no __tostring runs: the lesson's clock is paused
+// at the prompt).
+std::string upvalue_line(lua_State* L, const char* name, int index) {
+  const std::string assign = std::string(name) + " = ";
+  if (lua_type(L, index) == LUA_TNUMBER)
+    return assign + (lua_isinteger(L, index) ? std::to_string(lua_tointeger(L, index))
+                                             : exact_number(lua_tonumber(L, index)));
+  if (lua_type(L, index) == LUA_TSTRING || lua_type(L, index) == LUA_TBOOLEAN)
+    return assign + lua::format_value(L, index, "", true);
+  if (const Vec3* v = lua::test_vec3(L, index)) return assign + "vec3(" + exact_list(v->data(), 3) + ")";
+  if (const Quat* q = lua::test_quat(L, index)) {
+    const double wxyz[] = {q->w(), q->x(), q->y(), q->z()};
+    return assign + "quat(" + exact_list(wxyz, 4) + ")";
+  }
+  if (const Mat3* m = lua::test_mat3(L, index)) {
+    double entries[9];
+    for (int k = 0; k < 9; ++k) entries[k] = (*m)(k / 3, k % 3);
+    return assign + "mat3(" + exact_list(entries, 9) + ")";
+  }
+  if (lua_type(L, index) == LUA_TFUNCTION) {
+    lua_Debug ar;
+    lua_pushvalue(L, index);
+    lua_getinfo(L, ">S", &ar);
+    if (ar.linedefined > 0)
+      return "-- " + std::string(name) + ": the function of lines " +
+             std::to_string(ar.linedefined) + " to " + std::to_string(ar.lastlinedefined) +
+             " (paste it too)";
+  }
+  return "-- " + std::string(name) + ": " + lua::a_type_name(L, index) + " of the file";
+}
+
+// Lines first to last of a file, the first from its "function", the last up to its "end" (the
+// run function's own text, without "run = " and "},").
+std::vector<std::string> function_lines(const fs::path& path, int first, int last) {
+  std::vector<std::string> lines;
+  std::ifstream file(path);
+  int number = 0;
+  for (std::string line; number < last && std::getline(file, line);)
+    if (++number >= first) lines.push_back(line);
+  if (lines.empty()) return lines;
+  if (const size_t at = lines.front().find("function"); at != std::string::npos)
+    lines.front() = std::string(lines.front().find_first_not_of(' '), ' ') + lines.front().substr(at);
+  if (const size_t at = lines.back().rfind("end"); at != std::string::npos)
+    lines.back().resize(at + 3);
+  size_t indent = std::string::npos;  // the code's own indentation, removed
+  for (const std::string& line : lines)
+    if (line.find_first_not_of(' ') != std::string::npos)
+      indent = std::min(indent, line.find_first_not_of(' '));
+  for (std::string& line : lines) line.erase(0, std::min(indent, line.size()));
+  return lines;
+}
+
+// What a step's code needs in the REPL: the values it uses from the rest of the file, and the
+// file's functions it calls with what they use in turn (dependencies first).
+struct PasteLines {
+  std::vector<std::string> values, functions;
+  std::set<std::string> names;
+};
+
+// The text of a function of the lesson's file: "function name(...) ... end" as written, or
+// "name = function(...) ... end".
+std::string function_text(const fs::path& path, const std::string& name, const lua_Debug& ar) {
+  std::vector<std::string> lines = function_lines(path, ar.linedefined, ar.lastlinedefined);
+  if (lines.empty()) return "-- " + name + ": (the file cannot be read)\n";
+  if (lines.front().rfind("function " + name + "(", 0) != 0) lines.front() = name + " = " + lines.front();
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  return text;
+}
+
+void collect_uses(lua_State* L, int function, const fs::path& path, PasteLines& paste, int depth) {
+  for (int i = 1; const char* name = lua_getupvalue(L, function, i); ++i) {
+    const int value = lua_gettop(L);
+    const std::string key = name;
+    if (key != "_ENV" && !key.empty() && paste.names.insert(key).second) {
+      lua_Debug ar;
+      bool in_file = false;
+      if (lua_type(L, value) == LUA_TFUNCTION) {
+        lua_pushvalue(L, value);
+        lua_getinfo(L, ">S", &ar);
+        in_file = ar.source[0] == '@' && fs::path(ar.source + 1) == path && ar.linedefined > 0;
+      }
+      if (in_file && depth < 8 && paste.names.size() < 40) {
+        collect_uses(L, value, path, paste, depth + 1);
+        paste.functions.push_back(function_text(path, key, ar));
+      } else {
+        paste.values.push_back(upvalue_line(L, name, value));
+      }
+    }
+    lua_settop(L, value - 1);
+  }
+}
+
+// `c`: the source of step `number`'s run function, from the lesson's file, with the values and
+// functions it uses from the rest of the file, as lines to paste into the REPL and a call with a
+// ctx.
+void show_code(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int number) {
+  const int top = lua_gettop(L);
+  if (lua_rawgeti(L, lesson.runs, number) != LUA_TFUNCTION) {
+    run.page.note("  (this step has no code: it only explains)");
+    lua_settop(L, top);
+    return;
+  }
+  const int function = lua_gettop(L);
+  lua_Debug ar;
+  lua_pushvalue(L, function);
+  lua_getinfo(L, ">S", &ar);
+  PasteLines paste;
+  collect_uses(L, function, run.file->path, paste, 0);
+  std::string text = lua::fit_words("-- the code of step " + std::to_string(number) + " (" +
+                                        run.file->path.filename().string() + ", lines " +
+                                        std::to_string(ar.linedefined) + " to " +
+                                        std::to_string(ar.lastlinedefined) +
+                                        "); to try it, paste these lines into the REPL "
+                                        "(rigidlab):",
+                                    "  ", static_cast<size_t>(run.page.width()));
+  std::string code;
+  for (const std::string& line : paste.values) code += line + "\n";
+  for (const std::string& f : paste.functions) code += f;
+  code += function_text(run.file->path, "run", ar) + "run(lesson_context())\n";
+  for (size_t start = 0; start < code.size();) {  // indented like the rest of the lesson
+    const size_t end = code.find('\n', start);
+    text += "  " + code.substr(start, end - start) + "\n";
+    start = end + 1;
+  }
+  run.page.write("\n" + text);
+  lua_settop(L, top);
+}
+
+// ---- stepping through ------------------------------------------------------------------------
+
+// Shows step `number` and runs it; its result replaces the step's last one.
+void show_step(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx, int number,
+               const LessonClock& clock) {
+  run.page.step(lesson.spec, number);
+  const int passed = run.context.passed, failed = run.context.failed;
+  std::string error;
+  StepResult& result = run.steps[static_cast<size_t>(number) - 1];
+  result.ran = true;
+  result.error = !run_step(L, lesson, ctx, number, error);
+  result.passed = run.context.passed - passed;
+  result.failed = run.context.failed - failed;
+  if (!result.error) return;
+  run.page.error(clock.explain(error));
+  if (clock.limit_reached()) {  // the limits are the whole lesson's: no step would run
+    run.page.note("\nThe lesson is stopped: its limits count all of its steps.");
+    run.stopped = true;
+  }
+}
+
+// "4 of 4 checks passed ✓"; "2 of 2 checks passed in 2 of 5 steps" when some did not run.
+std::string summary(const LessonRun& run) {
+  int passed = 0, total = 0, ran = 0;
+  for (const StepResult& step : run.steps) {
+    passed += step.passed;
+    total += step.passed + step.failed;
+    ran += step.ran ? 1 : 0;
+  }
+  std::string text = std::to_string(passed) + " of " + std::to_string(total) + " checks passed";
+  const int count = static_cast<int>(run.steps.size());
+  if (ran < count) text += " in " + std::to_string(ran) + " of " + std::to_string(count) + " steps";
+  return text + (run.failed() || ran < count ? "" : " ✓");
+}
+
+void key_help(LessonRun& run, bool at_end) {
+  const std::string keys =
+      at_end ? "keys: Enter next lesson, m menu, q quit; b back to the last step, r run it "
+               "again, c show its code"
+             : "keys: Enter (or →) next step, b (or ←) back, r run this step again, c show "
+               "its code, m menu, q quit";
+  run.page.write(lua::fit_words(keys, "  ", static_cast<size_t>(run.page.width())));
+}
+
+// After the last step: the summary, the next lesson's title and its prompt.
+void end_screen(LessonRun& run) {
+  run.page.note("\n" + summary(run));
+  const LessonFile* next = run.catalog->next(*run.file);
+  if (next != nullptr && run.file->folder >= 0) {
+    const LessonInfo info = read_lesson_info(*next);
+    run.page.write(lua::fit_words_after("\nNext: ", next->id + (info.error.empty() ? " — " + info.title : ""),
+                                        static_cast<size_t>(run.page.width())));
+  }
+  else if (run.file->folder >= 0)
+    run.page.note("\nThat was the last lesson of the tour.");
+}
+
+std::string prompt(const LessonRun& run, bool at_end) {
+  const bool has_next = run.file->folder >= 0 && run.catalog->next(*run.file) != nullptr;
+  if (at_end)
+    return has_next ? "[Enter] next lesson   m menu   q quit > " : "[Enter] quit   m menu > ";
+  return run.page.width() >= 60 ? "[Enter] next step   b back   c code   r again   q quit > "
+                                : "[Enter] next   b back   q quit   ? keys > ";
+}
+
+// Steps through the lesson with the student: a key after each step (see key_help).
+void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx,
+                    int number, LessonClock& clock) {
+  const int count = static_cast<int>(lesson.spec.steps.size());
+  bool show_end = true;
+  for (;;) {
+    const bool at_end = number == count || run.stopped;
+    if (at_end && show_end) end_screen(run);
+    show_end = false;
+    run.page.write("\n" + prompt(run, at_end));
+    clock.pause();
+    const KeyPress key = read_key();
+    clock.resume();
+    run.page.write(key.kind == KeyPress::Kind::letter ? std::string(1, key.letter) + "\n" : "\n");
+    const char letter = key.kind == KeyPress::Kind::letter ? key.letter : 0;
+    if (key.kind == KeyPress::Kind::end || letter == 'q') {
+      if (!at_end) run.page.note("\n" + summary(run));
+      run.next = Next::quit;
+      return;
+    }
+    if (letter == 'm') {
+      if (!at_end) run.page.note("\n" + summary(run));
+      run.next = Next::menu;
+      return;
+    }
+    if (letter == 'c') {
+      show_code(L, run, lesson, number);
+    } else if (run.stopped && (letter == 'b' || letter == 'r' || key.kind == KeyPress::Kind::back)) {
+      run.page.note("  (the lesson was stopped by its limits: no step runs again)");
+    } else if (key.kind == KeyPress::Kind::enter) {
+      if (at_end) {
+        run.next = run.file->folder >= 0 && run.catalog->next(*run.file) ? Next::next_lesson
+                                                                          : Next::quit;
+        return;
+      }
+      show_step(L, run, lesson, ctx, ++number, clock);
+      show_end = true;
+    } else if (letter == 'b' || key.kind == KeyPress::Kind::back) {
+      number = std::max(1, number - 1);
+      show_step(L, run, lesson, ctx, number, clock);
+      show_end = true;
+    } else if (letter == 'r') {
+      show_step(L, run, lesson, ctx, number, clock);
+      show_end = true;
+    } else {
+      key_help(run, at_end);
+    }
+  }
+}
+
+// Shows the lesson of the LessonRun (argument 1), in protected mode: an error anywhere is
+// reported, not fatal.
 int present_protected(lua_State* L) {
   LessonRun& run = *static_cast<LessonRun*>(lua_touserdata(L, 1));
   lua_settop(L, 0);
   LessonClock clock(L);
   lua::open_all(L);
-  if (!trusted(*run.path)) lua::apply_sandbox(L);
+  if (!run.file->trusted) lua::apply_sandbox(L);
+  lua_pushlightuserdata(L, &run.page);
+  lua_pushcclosure(L, page_print, 1);
+  lua_setglobal(L, "print");
   LoadedLesson lesson;
   std::string error;
-  if (!load_lesson(L, *run.path, lesson, error)) {
+  if (!load_lesson(L, *run.file, lesson, error)) {
     std::fflush(stdout);
     std::fprintf(stderr, "rigidlab: %s\n", clock.explain(error).c_str());
-    run.failed = true;
+    return 0;
+  }
+  const int count = static_cast<int>(lesson.spec.steps.size());
+  if (run.options->from_step > count) {
+    std::fprintf(stderr, "rigidlab: --from %d: lesson '%s' has %d step%s\n",
+                 run.options->from_step, lesson.spec.id.c_str(), count, count == 1 ? "" : "s");
+    run.usage_error = true;
     return 0;
   }
   run.loaded = true;
-  lua::LessonContext& context = run.context;
-  context.output = &run.output;
-  context.width = lesson_width();
-  context.tolerance = lesson.spec.tolerance;
-  lua::push_lesson_context(L, context);
+  run.steps.assign(static_cast<size_t>(count), StepResult{});
+  run.context.output = &run.page;
+  run.context.width = run.page.width();
+  run.context.tolerance = lesson.spec.tolerance;
+  lua::push_lesson_context(L, run.context);
   const int ctx = lua_gettop(L);
-  print_lesson_heading(lesson.spec, context.width);
-  const int count = static_cast<int>(lesson.spec.steps.size());
-  for (int number = 1; number <= count;) {
-    print_step_header(lesson.spec, number);
-    if (!run_step(L, lesson, ctx, number, error)) {
-      std::printf("  error: %s\n", clock.explain(error).c_str());
-      run.failed = true;
-      if (clock.limit_reached()) {  // the limits are the whole lesson's: no step would run
-        std::printf("\nThe lesson is stopped: its limits count all of its steps.\n");
-        break;
-      }
-    }
-    std::fflush(stdout);
-    if (!interactive() || number == count) {
-      ++number;
-      continue;
-    }
-    std::printf("\n[Enter] next step   b back   q quit > ");
-    std::fflush(stdout);
-    std::string answer;
-    clock.pause();
-    const bool answered = read_answer(answer);
-    clock.resume();
-    if (!answered || answer == "q") break;
-    number = answer == "b" ? std::max(1, number - 1) : number + 1;
+  const LessonFolder* folder =
+      run.file->folder >= 0 ? &run.catalog->folders[static_cast<size_t>(run.file->folder)] : nullptr;
+  run.page.heading(lesson.spec, folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
+  int number = run.options->from_step;
+  show_step(L, run, lesson, ctx, number, clock);
+  if (run.interactive) {
+    step_with_keys(L, run, lesson, ctx, number, clock);
+  } else {
+    while (number < count && !run.stopped) show_step(L, run, lesson, ctx, ++number, clock);
+    run.page.note("\n" + summary(run));
   }
-  context.ended = true;
+  run.context.ended = true;
   return 0;
 }
 
-// Steps through one lesson: pauses after each step in a terminal, runs straight through
-// otherwise. Ctrl-C stops the step that is running (its error is shown) and the lesson goes
-// on. Lessons from outside the lesson directory run under the check limits (or `limits`, when
-// given). Returns 0 when every expectation held.
-int present_lesson(const fs::path& path, const Limits* limits) {
+struct Outcome {
+  int status = 0;  // 0 when every check held, 1 otherwise, 2 for a usage error
+  Next next = Next::quit;
+};
+
+// Shows one lesson: in a terminal step by step with keys, else straight through. Ctrl-C stops
+// the step that is running (its error is shown) and the lesson goes on. Untrusted lessons run
+// under the check limits (or the command line's).
+Outcome present_lesson(const LessonCatalog& catalog, const LessonFile& file,
+                       const LessonOptions& options) {
   LessonRun run;  // before the state: its context outlives the ctx
-  run.path = &path;
-  const Limits chosen = limits != nullptr ? *limits
-                        : trusted(path)   ? Limits{}
-                                          : default_check_limits();
-  LimitedState state(chosen, WhenStuck::exit);
+  run.file = &file;
+  run.catalog = &catalog;
+  run.options = &options;
+  run.interactive = interactive();
+  const Limits limits = options.limits != nullptr ? *options.limits
+                        : file.trusted            ? Limits{}
+                                                  : default_check_limits();
+  LimitedState state(limits, WhenStuck::exit);
   lua_State* L = state.get();
   if (L == nullptr) {
     std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
-    return 1;
+    return {1, Next::quit};
   }
   lua_pushcfunction(L, present_protected);
   lua_pushlightuserdata(L, &run);
@@ -218,164 +451,101 @@ int present_lesson(const fs::path& path, const Limits* limits) {
     std::fflush(stdout);
     std::fprintf(stderr, "rigidlab: %s\n",
                  state.explain(message != nullptr ? message : "error").c_str());
-    return 1;
+    return {1, Next::quit};
   }
-  if (!run.loaded) return 1;
-  const int total = run.context.passed + run.context.failed;
-  const bool failed = run.failed || run.context.failed > 0;
-  std::printf("\n%d of %d checks passed%s\n", run.context.passed, total, failed ? "" : " ✓");
-  return failed ? 1 : 0;
+  if (run.usage_error) return {exit_usage, Next::quit};
+  if (!run.loaded) return {1, run.interactive ? Next::menu : Next::quit};
+  return {run.failed() ? 1 : 0, run.next};
 }
 
-struct LessonInfo {
-  fs::path path;
-  std::string id, title, source, error;
-};
-
-// Opens the libraries and loads the lesson of the LessonInfo (argument 1), in protected mode.
-int read_info_protected(lua_State* L) {
-  auto& info = *static_cast<LessonInfo*>(lua_touserdata(L, 1));
-  lua::open_all(L);
-  if (!trusted(info.path)) lua::apply_sandbox(L);
-  LoadedLesson lesson;
-  if (load_lesson(L, info.path, lesson, info.error)) {
-    info.id = lesson.spec.id;
-    info.title = lesson.spec.title;
-    info.source = lesson.spec.source;
+// The menu: the list and a prompt, until an answer names a lesson (nullptr: q or the end of
+// the input). A wrong answer is answered under it, the list is not printed again, so the
+// message and the prompt stay on screen.
+const LessonInfo* menu(const LessonCatalog& catalog, const std::vector<LessonInfo>& infos) {
+  std::printf("rigidlab lessons — the worked examples of the course, step by step\n\n");
+  print_lesson_list(catalog, infos, true, interactive() ? terminal_rows() : 0);
+  for (const std::string& problem : catalog.problems) std::printf("\n! %s", problem.c_str());
+  std::printf("\nlesson number or id (q quits) > ");
+  for (;;) {
+    std::fflush(stdout);
+    std::string answer;
+    if (!read_line(answer) || answer == "q") {
+      std::printf("\n");
+      return nullptr;
+    }
+    if (const LessonInfo* choice = menu_choice(infos, answer)) return choice;
+    if (!answer.empty()) std::printf("%s\n", no_such_choice(infos, answer).c_str());
+    std::printf("lesson number or id (q quits) > ");
   }
-  return 0;
 }
 
-// Loading a lesson runs its file: under the check limits, so that a file that loops cannot
-// hang the list.
-std::vector<LessonInfo> read_lesson_infos() {
+// The tour: `first` (or the menu when nullptr), then what the student chooses after each
+// lesson: the next one in tour order, the menu, or the end.
+int tour(const LessonCatalog& catalog, const LessonFile* first, LessonOptions options) {
   std::vector<LessonInfo> infos;
-  for (const fs::path& path : lesson_files()) {
-    LessonInfo info;
-    info.path = path;
-    info.id = path.stem().string();
-    LimitedState state(default_check_limits(), WhenStuck::exit);
-    lua_State* L = state.get();
-    if (L == nullptr) {
-      info.error = "cannot create the Lua state: not enough memory";
-    } else {
-      const TimedRun timed(L);
-      lua_pushcfunction(L, read_info_protected);
-      lua_pushlightuserdata(L, &info);
-      if (lua_pcall(L, 1, 0, 0) != LUA_OK)
-        info.error = state.explain(lua_tostring(L, -1) ? lua_tostring(L, -1) : "error");
-      else
-        info.error = state.explain(info.error);
+  const LessonFile* current = first;
+  bool from_menu = first == nullptr;
+  int status = 0;
+  for (;;) {
+    if (current == nullptr) {
+      if (infos.empty()) infos = read_lesson_infos(catalog);
+      if (infos.empty()) {
+        std::fprintf(stderr, "rigidlab: no lessons\n");
+        return 1;
+      }
+      const LessonInfo* choice = menu(catalog, infos);
+      if (choice == nullptr) return status;
+      current = &choice->file;
+      from_menu = true;
     }
-    infos.push_back(info);
-  }
-  return infos;
-}
-
-// One row per lesson: id, title and source in columns, fitted to the terminal: the source
-// column, cut short, when at least 20 columns are left beside the titles, else none (a lesson
-// shows its source in full at the top); titles are cut only when they alone do not fit.
-// Written to a file or a pipe (width unknown) nothing is cut.
-void print_lesson_table(const std::vector<LessonInfo>& infos, bool numbered) {
-  size_t id_width = 2, title_width = 5;
-  for (const auto& info : infos) {
-    id_width = std::max(id_width, display_width(info.id));
-    title_width = std::max(title_width, display_width(info.title));
-  }
-  const size_t columns = static_cast<size_t>(terminal_width());
-  size_t source_width = std::string::npos;
-  if (columns > 0) {
-    const size_t before_title = (numbered ? 5 : 0) + id_width + 2;  // "%3d  " id "  "
-    const size_t left = columns > before_title ? columns - before_title : 0;
-    title_width = std::min(title_width, std::max<size_t>(left, 12));
-    source_width = left >= title_width + 2 + 20 ? left - title_width - 2 : 0;
-  }
-  int number = 0;
-  for (const auto& info : infos) {
-    if (numbered) std::printf("%3d  ", ++number);
-    std::string id = info.id + std::string(id_width - display_width(info.id), ' ');
-    if (!info.error.empty()) {
-      std::printf("%s  (cannot load: %s)\n", id.c_str(), info.error.c_str());
-      continue;
-    }
-    std::string title = lua::truncate_to_width(info.title, title_width);
-    if (source_width == 0) {
-      std::printf("%s  %s\n", id.c_str(), title.c_str());
-      continue;
-    }
-    title += std::string(title_width - display_width(title), ' ');
-    const std::string source = lua::truncate_to_width(info.source, source_width);
-    std::printf("%s  %s  %s\n", id.c_str(), title.c_str(), source.c_str());
+    const Outcome outcome = present_lesson(catalog, *current, options);
+    options.from_step = 1;  // --from is for the first lesson
+    if (outcome.status == exit_usage) return exit_usage;
+    status = std::max(status, outcome.status);
+    Next next = outcome.next;
+    if (!interactive()) next = from_menu ? Next::menu : Next::quit;
+    if (next == Next::quit) return status;
+    current = next == Next::next_lesson ? catalog.next(*current) : nullptr;
+    if (next == Next::menu) std::printf("\n");
   }
 }
 
 }  // namespace
 
 int list_lessons() {
-  const auto infos = read_lesson_infos();
+  const LessonCatalog catalog = read_catalog();
+  for (const std::string& problem : catalog.problems)
+    std::fprintf(stderr, "rigidlab: %s\n", problem.c_str());
+  const auto infos = read_lesson_infos(catalog);
   if (infos.empty()) {
-    std::fprintf(stderr, "rigidlab: no lessons in %s\n", lesson_directory().c_str());
+    std::fprintf(stderr, "rigidlab: no lessons\n");
     return 1;
   }
-  print_lesson_table(infos, false);
+  print_lesson_list(catalog, infos, false, 0);
   const bool all_loaded = std::all_of(infos.begin(), infos.end(),
                                       [](const LessonInfo& info) { return info.error.empty(); });
-  return all_loaded ? 0 : 1;
+  return all_loaded && catalog.problems.empty() ? 0 : 1;
 }
-
-namespace {
-
-// The menu's answer: a number in the list, or an id in it (the menu reads no file: an answer
-// of any length is only compared with the ids).
-const LessonInfo* menu_choice(const std::vector<LessonInfo>& infos, const std::string& answer) {
-  if (!answer.empty() && answer.size() <= 9 &&
-      answer.find_first_not_of("0123456789") == std::string::npos) {
-    const size_t number = std::stoul(answer);
-    return number >= 1 && number <= infos.size() ? &infos[number - 1] : nullptr;
-  }
-  for (const LessonInfo& info : infos)
-    if (info.id == answer) return &info;
-  return nullptr;
-}
-
-int run_menu() {
-  const auto infos = read_lesson_infos();
-  if (infos.empty()) {
-    std::fprintf(stderr, "rigidlab: no lessons in %s\n", lesson_directory().c_str());
-    return 1;
-  }
-  for (;;) {
-    std::printf("rigidlab lessons — the worked examples of the course, step by step\n\n");
-    print_lesson_table(infos, true);
-    std::printf("\nlesson number or id (q quits) > ");
-    std::fflush(stdout);
-    std::string answer;
-    if (!read_answer(answer) || answer == "q") {
-      std::printf("\n");
-      return 0;
-    }
-    if (answer.empty()) continue;
-    const LessonInfo* choice = menu_choice(infos, answer);
-    if (choice == nullptr) {
-      std::printf("no lesson '%s'\n\n", lua::truncate_to_width(answer, 60).c_str());
-      continue;
-    }
-    present_lesson(choice->path, nullptr);
-    std::printf("\n");
-  }
-}
-
-}  // namespace
 
 int lesson_command(const std::vector<std::string>& arguments) {
   Limits limits = default_check_limits();
   bool limits_given = false;
+  LessonOptions options;
   std::vector<std::string> names;
   for (std::size_t i = 0; i < arguments.size(); ++i) {
     std::string error;
     if (take_limit_option(arguments, i, limits, error)) {
       if (!error.empty()) return usage_error(error);
       limits_given = true;
+    } else if (arguments[i] == "--from" || arguments[i].rfind("--from=", 0) == 0) {
+      const bool inline_value = arguments[i].size() > 6;
+      if (!inline_value && i + 1 == arguments.size()) return usage_error("'--from' needs a step number");
+      const std::string value = inline_value ? arguments[i].substr(7) : arguments[++i];
+      if (value.empty() || value.size() > 6 || value.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoi(value) < 1)
+        return usage_error("'--from' needs a step number >= 1, got '" +
+                           lua::truncate_to_width(value, 60) + "'");
+      options.from_step = std::stoi(value);
     } else if (arguments[i] == "--") {
       names.insert(names.end(), arguments.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                    arguments.end());
@@ -388,14 +558,19 @@ int lesson_command(const std::vector<std::string>& arguments) {
     }
   }
   if (names.size() > 1) return usage_error("'lesson' takes one lesson id or file");
-  if (names.empty()) return run_menu();
-  fs::path path;
+  if (limits_given) options.limits = &limits;
+  const LessonCatalog catalog = read_catalog();
+  if (names.empty()) {
+    if (options.from_step > 1) return usage_error("'--from' needs a lesson id or file");
+    return tour(catalog, nullptr, options);
+  }
+  LessonFile file;
   std::string error;
-  if (!resolve_lesson(names[0], path, error)) {
+  if (!resolve_lesson(catalog, names[0], file, error)) {
     std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
     return exit_usage;
   }
-  return present_lesson(path, limits_given ? &limits : nullptr);
+  return tour(catalog, &file, options);
 }
 
 }  // namespace rigidlab::cli

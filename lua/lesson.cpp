@@ -490,7 +490,31 @@ const Entry context_metamethods[] = {
     {"__tostring", context_tostring, "ctx.__tostring", "tostring(ctx)", ""},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
+// The ctx of lesson_context(): one for the process, never freed, so that no ctx made by it
+// can outlive it; it writes to stdout.
+class StdoutOutput : public LessonOutput {
+ public:
+  void write(const std::string& lines) override {
+    std::fwrite(lines.data(), 1, lines.size(), stdout);
+    std::fflush(stdout);
+  }
+};
+
+// lesson_context() -> ctx: a ctx outside any lesson, for trying a step's code in the REPL.
+int lesson_context(lua_State* L) {
+  check_no_extra_args(L, 0);
+  static StdoutOutput output;
+  static LessonContext* const context = new LessonContext{};  // never freed (see above)
+  context->output = &output;
+  push_lesson_context(L, *context);
+  return 1;
+}
+
 const Entry functions[] = {
+    {"lesson_context", lesson_context, "lesson_context", "lesson_context() -> ctx",
+     "A lesson's ctx outside any lesson, printing what it shows and checks: to try the code\n"
+     "of a step (the lesson's key c shows it) in the REPL, run(lesson_context()).\n"
+     "tostring(ctx) counts its checks."},
     {"lesson", lesson_new, "lesson",
      "lesson{id =, title =, source =, steps = {...} [, tolerance =]} -> lesson",
      "Declares a lesson (a file in lessons/ returns one). Each step is\n"

@@ -11,7 +11,7 @@ home=$scratch/home
 mkdir "$home"
 
 # start [ENV_ASSIGNMENT...] [-- ARGUMENT...]: rigidlab with those arguments in a new 100x40
-# terminal; its exit status goes to $scratch/status when it ends. With $stderr_file set,
+# terminal (or $terminal_columns x $terminal_rows); its exit status goes to $scratch/status when it ends. With $stderr_file set,
 # stderr goes there, not to the screen. With $linger set, the terminal stays open after
 # rigidlab has ended, so its last screen can still be read.
 stderr_file=""
@@ -24,7 +24,7 @@ start() {
   for argument in "$@"; do arguments+=" '$argument'"; done
   local redirect=""
   [[ -n $stderr_file ]] && redirect="2>'$stderr_file'"
-  tmux -S "$socket" new-session -d -x 100 -y 40 \
+  tmux -S "$socket" new-session -d -x "${terminal_columns:-100}" -y "${terminal_rows:-40}" \
     "cd '$scratch' && env ${environment[*]} '$rigidlab'$arguments $redirect; echo \$? >'$scratch/status'${linger:+; sleep 60}"
 }
 screen() { tmux -S "$socket" capture-pane -p -J 2>/dev/null || true; }

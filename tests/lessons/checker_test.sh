@@ -61,31 +61,31 @@ expect "the stuck lesson is named by its id" 1 "FAIL fixture-stuck-in-c" -- \
 # Lessons in the lesson directory are trusted (no sandbox): they can do both.
 trusted_dir=$(mktemp -d)
 trap 'rm -rf "$trusted_dir"' EXIT
-cat >"$trusted_dir/crash.lua" <<'LESSON'
+cat >"$trusted_dir/fixture-crash.lua" <<'LESSON'
 return lesson{id = "fixture-crash", title = "Crashes", source = "tests",
   steps = {{title = "Check", text = "One check.", run = function(ctx) ctx:expect("one", 1, 1) end},
            {title = "Crash", text = "SIGABRT, as abort() sends.", run = function(ctx) os.execute("exec >/dev/null 2>&1; kill -ABRT $PPID; sleep 5") end}}}
 LESSON
-cat >"$trusted_dir/exits.lua" <<'LESSON'
+cat >"$trusted_dir/fixture-exits.lua" <<'LESSON'
 return lesson{id = "fixture-exits", title = "Exits", source = "tests",
   steps = {{title = "Exit", text = "os.exit(0).", run = function(ctx) ctx:expect("one", 1, 1) os.exit(0) end}}}
 LESSON
-cp "$here/good.lua" "$trusted_dir/good.lua"
+cp "$here/good.lua" "$trusted_dir/fixture-good.lua"
 expect "a crashing lesson fails with its signal" 1 "error: crashed: signal 6 (Aborted)" -- \
-  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check crash
+  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check fixture-crash
 expect "the crash keeps the checks of the steps before it" 1 "FAIL fixture-crash                1/1 checks" -- \
-  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check crash
+  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check fixture-crash
 expect "os.exit(0) in a lesson is no pass" 1 "error: the lesson ended the process (exit status 0)" -- \
-  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check exits
+  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check fixture-exits
 expect "the other lessons still run" 1 "1 passed, 2 failed" -- \
-  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check crash exits good
+  env RIGIDLAB_LESSONS="$trusted_dir" "$rigidlab" check fixture-crash fixture-exits fixture-good
 
 # check takes the limit options (the defaults otherwise) and refuses other options.
 expect "--max-instructions overrides the default" 1 \
   "stopped: the instruction limit (1000000 instructions) reached" -- \
   "$rigidlab" check --max-instructions 1e6 "$here/infinite_loop.lua"
 expect "the default instruction limit" 1 "stopped: the instruction limit (500000000 instructions) reached" -- \
-  "$rigidlab" check "$here/infinite_loop.lua"
+  "$rigidlab" check --timeout 0 "$here/infinite_loop.lua"
 expect "--max-memory overrides the default" 1 "stopped: the memory limit (16 MB) reached" -- \
   "$rigidlab" check --max-memory=16 "$here/memory_hog.lua"
 expect "--timeout overrides the default" 1 "stopped: the time limit (0.5 s) reached" -- \
