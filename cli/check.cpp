@@ -70,6 +70,8 @@ int check_protected(lua_State* L) {
   if (!job.file->trusted) rigidlab::lua::apply_sandbox(L);
   lua_pushcfunction(L, [](lua_State*) { return 0; });  // one line per lesson: print is silenced
   lua_setglobal(L, "print");
+  lua_pushnil(L);  // and a ctx of its own would print and count outside the lesson's
+  lua_setglobal(L, "lesson_context");
   LoadedLesson lesson;
   std::string error;
   if (!load_lesson(L, *job.file, lesson, error)) {

@@ -39,8 +39,8 @@ velocity ω = dθ/dt (rad/s), acceleration a with angular acceleration α = dω/
 force F with torque τ, and mass m with the moment of inertia I, which says how stubbornly
 the body resists being spun up. The law is the same shape too: τ = I·α, like F = m·a.
 
-Our body is a disc of 4 kg and radius 1 m. rigidlab's inertia.solid_cylinder gives its
-moment about the axis, ½·m·R² = 2 kg·m². We push it with 2 N along y at a point 0.5 m out
+Our body is a disc of 4 kg and radius 1 m, 0.01 m thick. rigidlab's inertia.solid_cylinder
+gives its moment about the axis, ½·m·R² = 2 kg·m² (the thickness does not enter it). We push it with 2 N along y at a point 0.5 m out
 along x. The torque is the cross product r × F: only its z component is non-zero in 2D,
 1 N·m, and it spins the disc up at α = τ/I = 0.5 rad/s². A push at the centre (r = 0)
 would give no torque at all.]],

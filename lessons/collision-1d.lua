@@ -117,8 +117,9 @@ a's momentum it is −3.2.]],
     {
       title = "The square as a rigid body",
       text = [[
-Finally the same collision between real rigid bodies: a 1 kg ball and the square built
-by inertia.points from its four particles. collide.resolve applies the impulse at the
+Finally the same collision between real rigid bodies: a 1 kg ball of radius 0.05 m,
+centred at x = −0.55 m and moving at 2 m/s along x, and the square built by inertia.points
+from its four particles, at rest. collide.resolve applies the impulse at the
 contact point, here on the line through the square's centre, with the normal along x from
 the ball to the square. It finds the same J = 3.2 N·s, the same velocities −1.2 and
 0.8 m/s, and the square does not start to turn, since the blow passes through its centre

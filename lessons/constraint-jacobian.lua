@@ -59,7 +59,10 @@ products (n·(ω×r) = ω·(r×n)) separates the geometry from the motion: dC/dt
 twelve numbers, the Jacobian J, times the column of the two bodies' linear and angular
 velocities. Each block of J says how much one velocity component opens or closes the gap.
 
-Here two boxes touch at a point off both centres. The Jacobian's blocks come from the
+Here two boxes touch at a point off both centres: box a, 1 kg and 1 × 0.4 × 0.6 m, centred
+at (−0.5, 0.3, 0) m, moving at (2, 0, 0) m/s and turning at (0, 0.5, 1) rad/s; box b, a 4 kg
+cube of 1 m, centred at (0.5, −0.2, 0.1) m, moving at (0, 0.3, 0) m/s and turning at
+(−0.4, 0, 0) rad/s. They touch at (0, 0.1, −0.2) m with the normal n = (1, 0, 0) from a to b. The Jacobian's blocks come from the
 offsets ra and rb of the contact from each centre of mass, and J v must equal the relative
 normal velocity of the two contact points as the engine reports it (b:point_velocity).
 (Appendix D drops a subscript on the way: after the rearrangement its second term reads
@@ -91,7 +94,9 @@ J = [−nx, −ny, nx, ny] and W = diag(1/ma, 1/ma, 1/mb, 1/mb) the product is
 4 that is 1.25 kg⁻¹, whatever the direction of n. Appendix D calls J W Jᵀ itself "our
 calculated effective mass", but its unit is 1/kg: the effective mass, the mass the contact
 feels, is its inverse, 0.8 kg here, and that is what collide.effective_mass returns. For two
-balls touching on their line of centres, ra×n = rb×n = 0 and rotation drops out by itself.]],
+balls touching on their line of centres, ra×n = rb×n = 0 and rotation drops out by itself:
+we check it with two balls of radius 0.5 m (1 kg and 4 kg) centred at −0.5n and 0.5n, which
+touch at the origin.]],
       formula = "J W Jᵀ = m_a⁻¹ n_x² + m_a⁻¹ n_y² + m_b⁻¹ n_x² + m_b⁻¹ n_y² = 1/ma + 1/mb",
       run = function(ctx)
         local rows = {}
@@ -106,11 +111,12 @@ balls touching on their line of centres, ra×n = rb×n = 0 and rotation drops ou
           local a = body.sphere{mass = 1, radius = 0.5, position = -0.5 * n}
           local b = body.sphere{mass = 4, radius = 0.5, position = 0.5 * n}
           local engine = 1 / collide.effective_mass(a, b, vec3(0, 0, 0), n)
-          rows[#rows + 1] = {degrees, JWJ, engine}
+          rows[#rows + 1] = {degrees, a.position, JWJ, engine}
           ctx:expect("n at " .. degrees .. "°: J W Jᵀ by hand = 1.25", JWJ, 1.25)
           ctx:expect("n at " .. degrees .. "°: 1/effective_mass = 1.25", engine, 1.25)
         end
-        ctx:table({"n at angle (°)", "J W Jᵀ by hand (1/kg)", "1/collide.effective_mass"}, rows)
+        ctx:table({"n at angle (°)", "a's centre (m)", "J W Jᵀ by hand (1/kg)",
+                   "1/collide.effective_mass"}, rows)
       end,
     },
     {

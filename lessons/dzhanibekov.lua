@@ -154,6 +154,7 @@ the other two axes only oscillates: it stays near its size (checked: between 0 a
         -- the growing direction of the linear system: ωz = −(λ/a)·ωy
         local w, b = spinning_box({integrator = "rk4"},
                                   vec3(spin_rate, epsilon, -epsilon * lambda / a))
+        ctx:show("ω at t = 0 (rad/s)", b.angular_velocity)
         w:step(dt, 600)
         local wobble = body_omega(b).y / epsilon
         ctx:show("ωy(0.5 s)/ωy(0)", wobble)

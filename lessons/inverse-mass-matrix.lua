@@ -59,6 +59,10 @@ for impulses: an impulse j at r₁ changes the velocity at r₂ by M⁻¹j. Note
 response is not parallel to the push: a body pushed off-centre partly slides and partly
 turns away.
 
+Our body is a 2 kg box of 0.4 × 0.2 × 0.6 m, tilted by 0.7 rad (40.1°) about the axis
+(1, 2, 3), with its centre at (0, 1, 0) m, moving at (1, −2, 0.5) m/s and turning at
+(0.3, −1, 2) rad/s.
+
 Here is a 2 kg box, tilted, pushed at one bottom corner, watched at the same corner and at
 the opposite one. collide.inverse_mass_matrix must match the formula assembled by hand from
 the box's closed-form inertia, and a real impulse (b:apply_impulse) must change the

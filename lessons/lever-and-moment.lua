@@ -40,8 +40,8 @@ balanced by only 10 N placed 1.5 m to the right: three times the arm, a third of
 That is the whole trick of crowbars and bottle openers.
 
 Written with cross products the two moments are r₁ × F₁ = +15 N·m and r₂ × F₂ = −15 N·m
-about z: equal and opposite. We hang both weights on a 4 m plank whose centre sits on the
-pivot, and let the pivot push up with the 40 N it must carry. In a rigidlab world the plank
+about z: equal and opposite. We hang both weights on a plank of 2 kg and 4 × 0.1 × 0.1 m whose centre sits on
+the pivot, in a world without gravity, and let the pivot push up with the 40 N it must carry. In a rigidlab world the plank
 then neither falls nor turns. Make the right weight 12 N and it starts to tip.
 
 A small slip on the slide: it says "a level is in equilibrium" where "a lever" is meant.

@@ -50,7 +50,8 @@ return lesson{
     {
       title = "The inertia tensor turns with the body",
       text = [[
-A body's inertia is simple in its own axes: for our box, I₀ is diagonal with
+A body's inertia is simple in its own axes: for our box (3 kg, 1 × 0.6 × 0.3 m, turned by
+0.6 rad about (1, 1, 0) and spinning at ω = (1, 0.3, 2) rad/s), I₀ is diagonal with
 m(h² + d²)/12 and so on. But torques and angular momentum live in world axes, and there the
 tensor is I = A I₀ Aᵀ, with A the orientation matrix: rotate a vector into body axes (Aᵀ),
 apply I₀, rotate back (A). Because A is orthonormal, A⁻¹ = Aᵀ, and the inverse comes for
@@ -157,8 +158,8 @@ is still a first-order step.]],
 002 writes the orientation update as A' = A·Rotate(ωΔt). That order would be right for an
 ω given in body axes, but here ω = I⁻¹L is in world axes, and a world-axis turn must be
 applied on the left: A' = Rotate(ωΔt)·A. For a body that is already tilted, the two differ
-by much more than a rounding error. A ball spinning about the world z axis at 1 rad/s for
-0.5 s shows it: rigidlab's world ends up at Rotate(ωΔt)·A, and A·Rotate(ωΔt) would be a
+by much more than a rounding error. A ball (1 kg, radius 0.5 m) tilted by 90° about x and
+spinning about the world z axis at 1 rad/s for 0.5 s shows it: rigidlab's world ends up at Rotate(ωΔt)·A, and A·Rotate(ωΔt) would be a
 turn about the body's own z axis, a different axis in the world. (003 has a similar
 inconsistency: its summary says to integrate the orientation with the new ω computed from
 the new L, while its formula uses ω(t₁), the old one.)]],

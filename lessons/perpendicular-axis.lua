@@ -91,7 +91,8 @@ are checked to 1e-12.]],
 For a body with thickness every piece adds z² to both I_x and I_y but nothing to I_z, so in
 general I_x + I_y = I_z + 2·Σ m·z² ≥ I_z. Equality is the signature of flatness. A thin plate
 of w × h (a box with tiny depth) obeys I_z = I_x + I_y = m(w² + h²)/12; a cube of side a, with
-every moment m·a²/6, has I_x + I_y = m·a²/3, twice its I_z. This inequality between the three
+every moment m·a²/6, has I_x + I_y = m·a²/3, twice its I_z. We take a 2 kg plate of
+0.4 × 0.3 m, 1 µm deep, and a 2 kg cube of side 0.3 m. This inequality between the three
 moments holds for every rigid body, about any point and in any orientation: a tensor that
 breaks it cannot belong to anything real, and body{} refuses it.]],
       formula = "any body: I_x + I_y = I_z + 2·∫z² dm ≥ I_z",

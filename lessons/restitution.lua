@@ -94,9 +94,9 @@ lacks a minus sign: the bodies separate, so the relative velocity reverses direc
 In 3D the bodies meet along a contact normal N, and only the velocity components along N
 take part: dotting the relative velocity with N turns the problem back into the 1D one.
 Without friction the parts of the velocities across N pass through unchanged. Here two
-balls meet at a slant (their velocities are not along the line of centres), with the
-normal N along that line, and
-collide.resolve is given the contact point between them; its impulse must equal 003's
+balls of radius 0.5 m, 1 kg and 4 kg, meet at a slant: they touch at the origin, centred at
+∓0.5N with N = (0.6, 0.8, 0), moving at (2, 1, −1) and (−1, 0.5, 2) m/s, with e = 0.5 —
+their velocities are not along the line of centres. collide.resolve is given the contact point between them; its impulse must equal 003's
 formula with the normal components only, and the energy lost must be ½μ(1 − e²)(v_rel·N)².
 The contact point lies on the line of centres, so the impulse passes through both centres
 of mass and neither ball starts to spin.]],
@@ -108,6 +108,7 @@ of mass and neither ball starts to spin.]],
         local v1, v2 = vec3(2, 1, -1), vec3(-1, 0.5, 2)
         local a = body.sphere{mass = ma, radius = 0.5, position = -0.5 * normal, velocity = v1}
         local b = body.sphere{mass = mb, radius = 0.5, position = 0.5 * normal, velocity = v2}
+        ctx:show("centres of the balls (m)", {a.position, b.position})
         local before = a:kinetic_energy() + b:kinetic_energy()
         local J = collide.resolve(a, b, {point = vec3(0, 0, 0), normal = normal, restitution = e})
         local closing = (v2 - v1):dot(normal)
@@ -143,7 +144,8 @@ engine stores inverse masses, and an immovable body has 1/m = 0 (Appendix C). Th
 the wall then drops out of the formula, and 003's impulse reduces to p̂ = −(e+1)m1(v1·n)n:
 the ball's normal momentum is reversed and scaled by e, its sideways velocity untouched.
 
-A 2 kg ball moving at (1, −3, 0) m/s hits a static floor below it with e = 0.5; the normal n
+A 2 kg ball of radius 0.1 m at the origin, moving at (1, −3, 0) m/s, hits a static floor
+below it (a box of 10 × 1 × 10 m centred at y = −0.6 m, its top at −0.1 m) with e = 0.5; the normal n
 points from the ball to the floor, (0, −1, 0), so v1·n = 3 m/s and p̂ = −1.5·2·3·n, an
 impulse of 9 N·s upward. The ball leaves at (1, 1.5, 0) m/s and keeps a quarter (e²) of
 the kinetic energy of its vertical motion. (A small slip in Appendix C, where it lists

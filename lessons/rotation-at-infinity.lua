@@ -97,17 +97,18 @@ striker is the 1e30 kg pivot's share of the impulse.)]],
             local ra, rb = vec3(0, -radius, 0), vec3(0, radius, 0)   -- pivot → particle
             local a = rod_body(1, ra, {position = -ra, angular_velocity = ra:cross(v) / ra:dot(ra)})
             local b = rod_body(case.mb, rb, {position = -rb})
+            local spin = a.angular_velocity.z
             local label = "|r| = " .. radius .. ", mb = " .. case.mb .. ": "
             ctx:expect(label .. "ω×r = v", a:point_velocity(contact), v)
             local J = collide.resolve(a, b, {point = contact, normal = N, restitution = 1})
             local va, vb = a:point_velocity(contact), b:point_velocity(contact)
-            rows[#rows + 1] = {radius, case.mb, J, va.x, vb.x}
+            rows[#rows + 1] = {radius, case.mb, spin, J, va.x, vb.x}
             ctx:expect(label .. "J", J, case.J)
             ctx:expect(label .. "va'", va, vec3(case.va, 0, 0))
             ctx:expect(label .. "vb'", vb, vec3(case.vb, 0, 0))
           end
         end
-        ctx:table({"|r| (m)", "mb (kg)", "J (N·s)", "va' (m/s)", "vb' (m/s)"}, rows)
+        ctx:table({"|r| (m)", "mb (kg)", "ωa before (rad/s)", "J (N·s)", "va' (m/s)", "vb' (m/s)"}, rows)
       end,
     },
     {
@@ -119,7 +120,7 @@ grows exactly as r². For other bodies the limit may not exist at all. A ball of
 ρ = 0.1 m on the rod adds its own moment (2/5)mρ²: the term is r²/(m(r² + 0.4ρ²)), which
 does approach 1/m as r grows, only because the ball's own spin becomes negligible. A free
 uniform plank of length L hit square at its end has 1/m + (L/2)²/(mL²/12) ≈ 4/m at any
-length. And a body of fixed inertia hit ever farther from its centre (a ball on a long
+length (the planks here are 1 kg, 5 cm square in section). And a body of fixed inertia hit ever farther from its centre (a ball on a long
 light stick) has a term r²/I that grows without bound: it is spun ever more easily, and
 the impulse goes to zero, not to the linear one.]],
       formula = "ball on a rod:    r²/(m(r² + 0.4ρ²)) → 1/m\n" ..
@@ -186,12 +187,13 @@ That is the sense in which 001's linear collision is a rotation about a point at
           local angle = s / radius
           local want = vec3(radius * math.sin(angle), -radius * math.cos(angle), 0)
           local stray = particle.y + radius
-          rows[#rows + 1] = {radius, particle.x, stray, s ^ 2 / (2 * radius)}
+          rows[#rows + 1] = {radius, spin.z, particle.x, stray, s ^ 2 / (2 * radius)}
           ctx:expect("r = " .. radius .. ": particle on its circle", particle, want, 1e-12)
           ctx:expect("r = " .. radius .. ": stray r(1 − cos(s/r))", stray,
                      radius * (1 - math.cos(angle)), {abs = 1e-9})
         end
-        ctx:table({"r (m)", "x after 1 m (m)", "sideways stray (m)", "≈ s²/(2r) (m)"}, rows)
+        ctx:table({"r (m)", "ω (rad/s)", "x after 1 m (m)", "sideways stray (m)", "≈ s²/(2r) (m)"},
+                  rows)
       end,
     },
   },

@@ -56,10 +56,12 @@ return lesson{
     {
       title = "Each bounce keeps e² of the height",
       text = [[
-001 drops a ball of radius 0.35 m on a floor with restitution e = 0.75. At each impact the
+001 drops a ball of radius 0.35 m on a floor with restitution e = 0.75 (and gives no mass: the
+bounces do not depend on it; ours is 1 kg). At each impact the
 floor reverses the ball's vertical speed and scales it by e; since the height a ball rises
 to grows with the square of its launch speed (h = v²/2g), each rebound reaches e² = 0.5625
-of the previous one. From 2 m: 1.125 m, 0.633 m, 0.356 m, ... In rigidlab both the floor
+of the previous one. From 2 m (the ball's centre starts at 2.35 m, its bottom 2 m above the
+floor): 1.125 m, 0.633 m, 0.356 m, ... In rigidlab both the floor
 (w:add_plane) and the ball carry a restitution and a friction; a contact uses the larger
 restitution and the geometric mean of the frictions (Box2D's rule), so we give both 0.75
 and 0.6. Like Box2D, the world also stops bouncing impacts slower than 1 m/s

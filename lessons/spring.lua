@@ -41,8 +41,8 @@ return lesson{
 A spring pulls in proportion to how far it is stretched: F = k·x, with x the vector from
 the point on the body to the target, so the force always points back toward the target.
 001's code uses a stiffness k = 15 N/m and adds a damper, a force proportional to how fast
-x changes (1 N·s/m), which is what eventually stops the bouncing. Hang a 1 kg box from the
-target by its centre and it comes to rest where the spring balances its weight: k·d = m·g,
+x changes (1 N·s/m), which is what eventually stops the bouncing. Hang a 1 kg box (a cube of
+0.4 m) from the target, 2 m up, by its centre and it comes to rest where the spring balances its weight: k·d = m·g,
 so d = mg/k = 9.81/15 = 0.654 m below the target (0.6533 m with 001's g = 9.8).
 
 Three details of 001's code are worth knowing when you copy it. It estimates the damper's
@@ -76,6 +76,7 @@ times, the box hangs mg/k below the target to better than 1e-8 m.]],
                 "γ = c/(2m),  ω_d = √(k/m − γ²)",
       run = function(ctx)
         local w, box = hanging_box(vec3(0, 0, 0))
+        ctx:show("box centre at release (m)", box.position)
         local rows, worst = {}, 0
         for _ = 1, 80 do
           w:step(0.01, 50)
@@ -110,6 +111,7 @@ drag vanishes at rest, so it does not change where the box ends up.]],
       run = function(ctx)
         local corner = box_size / 2          -- body coordinates of the top corner
         local w, box = hanging_box(corner)
+        ctx:show("box centre at release, the corner 0.1 m below the target (m)", box.position)
         w:add_drag{body = box, linear = 0.5, angular = 0.05}
         w:step(0.01, 8000)
         local attachment = box:to_world(corner)

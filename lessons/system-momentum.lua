@@ -21,7 +21,7 @@ return lesson{
       text = [[
 Tie four particles of 1 kg together with rigid, weightless rods and you have a body. As far
 as pushing it in a straight line goes, the rods change nothing: the masses simply add, so
-the body has 4 kg. We place the particles on the corners of a 1 m square; inertia.points
+the body has 4 kg. We place the particles on the corners of a 1 m square, at x, y = ±0.5 m; inertia.points
 adds their masses and finds their centre of mass in the middle of the square.]],
       formula = "m_total = Σ mᵢ = 1 + 1 + 1 + 1 = 4",
       run = function(ctx)
@@ -37,8 +37,9 @@ adds their masses and finds their centre of mass in the middle of the square.]],
       text = [[
 Set all four moving at 1 m/s. Each carries momentum m·v = 1 kg·m/s, and the system carries
 the sum, 4 kg·m/s: exactly what a single 4 kg particle moving at 1 m/s carries. We check it
-with rigidlab's bodies: a world holding four 1 kg balls reports its total linear momentum,
-and a single 4 kg ball reports its own.]],
+with rigidlab's bodies: a world holding four 1 kg balls (each drawn with a radius of 5 cm,
+at the corners of the square) reports its total linear momentum, and a single 4 kg ball
+reports its own.]],
       formula = "P_total = Σ mᵢvᵢ = 1·1 + 1·1 + 1·1 + 1·1 = 4",
       run = function(ctx)
         local w = world{gravity = vec3(0, 0, 0)}

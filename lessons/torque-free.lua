@@ -62,8 +62,9 @@ return lesson{
 Rearranged for the accelerations, the Newton-Euler equations give a = f/m and, for the rotation,
 ω̇ = I⁻¹(τ − ω × Iω). With no force the centre of mass coasts. With no torque, though, ω
 can still change: ω̇ = −I⁻¹(ω × Iω). The term vanishes only when Iω is parallel to ω, that
-is when the body spins about a principal axis. Our box has three different moments, and
-we start it spinning at ω = (1, 0.3, 2) rad/s, not along any axis of the box.
+is when the body spins about a principal axis. Our box, 3 kg and 1 × 0.6 × 0.3 m, has
+three different moments, and we start it spinning at ω = (1, 0.3, 2) rad/s, not along any
+axis of the box.
 
 We compute 002's rate by hand from the box's inertia and compare with what the world does
 in its first moment of motion: one RK4 step of 1e-6 s, differenced. A one-sided difference

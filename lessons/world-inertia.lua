@@ -50,7 +50,8 @@ orientation matrix R: I_world = R·I_body·Rᵀ.
 
 001 derives this directly: turning the body moves each particle offset to r' = R·r; putting r'
 into the particle formula, the R's factor out on both sides. We check exactly that: a body
-of six particles with I_body = diag(0.09, 0.37, 0.44) kg·m², turned 60° about (1, 1, 0).
+of six particles, 7 kg in all (2 kg at x = ±0.3 m, 1 kg at y = ±0.2 m, 0.5 kg at
+z = ±0.1 m), with I_body = diag(0.09, 0.37, 0.44) kg·m², turned 60° about (1, 1, 0).
 Rebuilding the tensor from the turned particles must match the body's world_inertia().]],
             formula = "I_world = R·I_body·Rᵀ\n" ..
                 "(from r' = R·r:  (r'·r')E − r'⊗r' = R((r·r)E − r⊗r)Rᵀ)",
