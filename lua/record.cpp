@@ -28,8 +28,11 @@ struct LuaRecorder {
 
 LuaRecorder& check_recorder(lua_State* L, int arg) {
   LuaRecorder* r = test_tagged<LuaRecorder>(L, arg, recorder_tag);
-  if (r == nullptr) type_error(L, arg, "recorder");
-  return *r;
+  if (r != nullptr) return *r;
+  // A recorder whose __gc has run (by hand, through debug) keeps its size and metatable.
+  if (lua_rawlen(L, arg) == sizeof(Tagged<LuaRecorder>) && has_metatable(L, arg, &recorder_metatable_key))
+    arg_error(L, arg, "the recorder was finalised (its __gc has run)");
+  type_error(L, arg, "recorder");
 }
 
 const TypeSpec recorder_type = {"recorder", &recorder_metatable_key, nullptr};
@@ -216,7 +219,8 @@ void get_every(lua_State* L, int object, const Property&) {
   lua_pushinteger(L, check_recorder(L, object).recorder->every());
 }
 void get_recording(lua_State* L, int object, const Property&) {
-  lua_pushboolean(L, check_recorder(L, object).recorder->recording());
+  const LuaRecorder& rec = check_recorder(L, object);  // and its world still there
+  lua_pushboolean(L, rec.recorder->recording() && rec.store->world() != nullptr);
 }
 void get_stop_reason(lua_State* L, int object, const Property&) {
   const Recorder& r = *check_recorder(L, object).recorder;
@@ -313,11 +317,16 @@ const Entry metamethods[] = {
 
 std::vector<std::vector<Vec3>> recorded_trails(lua_State* L, int world, int arg) {
   push_recorders(L, world);
-  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
-  if (n == 0) arg_error(L, arg, "field 'show': 'trail' needs a recorder: rec = w:record{} first");
-  lua_rawgeti(L, -1, n);
-  const LuaRecorder& rec = check_recorder(L, lua_gettop(L));
-  lua_pop(L, 2);
+  const LuaRecorder* newest = nullptr;  // the newest one not finalised by hand
+  for (lua_Integer i = static_cast<lua_Integer>(lua_rawlen(L, -1)); i >= 1 && !newest; --i) {
+    lua_rawgeti(L, -1, i);
+    newest = test_tagged<LuaRecorder>(L, -1, recorder_tag);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  if (newest == nullptr)
+    arg_error(L, arg, "field 'show': 'trail' needs a recorder: rec = w:record{} first");
+  const LuaRecorder& rec = *newest;
   std::vector<std::vector<Vec3>> trails;
   const SeriesInfo* position = find_series("position", true);
   for (std::size_t b = 0; b < rec.recorder->body_count(); ++b) {

@@ -63,7 +63,10 @@ Stroke patterned_stroke(Ink ink, int pattern_index, bool braille) {
       {0, 0x1, 2, 0},     // dotted: 1 on, 1 off
       {0, 0x17, 6, 0},    // dash-dot: 3 on, 1 off, 1 on, 1 off
   };
-  Stroke s = (braille ? braille_patterns : ascii_patterns)[static_cast<unsigned>(pattern_index) % 4];
+  // Through a pointer: GCC 12 with -fsanitize=undefined indexes a conditional expression of
+  // array type as if the index were 0.
+  const Stroke* table = braille ? braille_patterns : ascii_patterns;
+  Stroke s = table[static_cast<unsigned>(pattern_index) % 4];
   s.ink = ink;
   return s;
 }

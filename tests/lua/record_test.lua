@@ -117,6 +117,32 @@ T.case("csv: a header and one row per sample, numbers that read back", function(
     "bad argument #1 to 'recorder:csv' (cannot write '/dev/full': No space left on device)")
 end)
 
+T.case("a recorder outlives its world, and a finalised one says so", function()
+  local w = world{}
+  w:add(body.sphere{mass = 1, radius = 1})
+  local rec = w:record{}
+  w:step(0.01, 3)
+  debug.getmetatable(w).__gc(w)  -- the world goes first: the samples stay readable
+  T.equal(#rec, 4, "samples")
+  T.equal(rec.recording, false, "no world to record")
+  T.near(rec:series("position")[4], vec3(0, -0.005886, 0), 1e-12, "position after 3 steps")
+  rec:stop()
+  local w2 = world{}
+  local rec2 = w2:record{}
+  debug.getmetatable(rec2).__gc(rec2)
+  T.fails(function() return #rec2 end, "the recorder was finalised")
+  w2:step(0.01, 5)  -- the world still tells it of steps: nothing breaks
+  T.fails(function() w2:render{show = "trail"} end, "'trail' needs a recorder")
+  for _ = 1, 3 do  -- worlds and recorders collected together, in any order
+    local w3 = world{}
+    w3:add(body.sphere{mass = 1, radius = 1})
+    w3:record{}
+    w3:step(0.01, 2)
+  end
+  collectgarbage()
+  collectgarbage()
+end)
+
 T.case("errors", function()
   local w, box = scene()
   local other = world{}
