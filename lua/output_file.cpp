@@ -1,7 +1,5 @@
 #include "lua/output_file.hpp"
 
-#include <cstring>
-
 #include "lua/binding.hpp"
 #include "lua/sandbox.hpp"
 
@@ -9,18 +7,11 @@ namespace rigidlab::lua {
 
 std::string check_output_path(lua_State* L, int arg, int index, const char* field) {
   index = lua_absindex(L, index);
-  const std::string what = field ? std::string("field '") + field + "'" : std::string("path");
-  if (lua_type(L, index) != LUA_TSTRING) {
-    if (field == nullptr) type_error(L, arg, "string (a file path)");
-    arg_error(L, arg, "%s must be a string, got %s", what.c_str(),
-              value_type_name(L, index));
-  }
+  const Where where = field ? Where::field(arg, field) : Where::argument(arg, "path");
+  if (field == nullptr && lua_type(L, index) != LUA_TSTRING) type_error(L, arg, "string (a file path)");
   std::size_t size = 0;
-  const char* path = lua_tolstring(L, index, &size);
-  if (size == 0) arg_error(L, arg, "%s must not be empty", what.c_str());
-  if (std::strlen(path) != size)
-    arg_error(L, arg, "%s may not contain a NUL byte ('\\0' at byte %d of %d)", what.c_str(),
-              static_cast<int>(std::strlen(path) + 1), static_cast<int>(size));
+  const char* path = check_name(L, index, where, &size);  // a string without NUL bytes
+  if (size == 0) where.error(L, "must not be empty");
   if (is_sandboxed(L))
     arg_error(L, arg, "%s%sfiles cannot be written in the sandbox", field ? field : "",
               field ? " " : "");

@@ -11,8 +11,8 @@ namespace rigidlab::lua {
 
 // The string at stack index `index` as a file path to write, for argument `arg` (`field` names
 // the option field holding it, or nullptr): a string, not empty, without a NUL byte (the C
-// library would write to the path cut at the NUL), and not in the sandbox. Raises
-// "bad argument #1 to 'plot.lines' (field 'svg' may not contain a NUL byte ...)" otherwise.
+// library would write to the path cut at the NUL: check_name), and not in the sandbox. Raises
+// "bad argument #1 to 'plot.lines' (field 'svg' must not contain a NUL byte ...)" otherwise.
 std::string check_output_path(lua_State* L, int arg, int index, const char* field);
 
 // Calls write(), which may throw present::FileError or std::invalid_argument, and raises its

@@ -83,9 +83,9 @@ end)
 
 T.case("names with a NUL byte are refused, not cut", function()
   T.fails(function() plot.lines{{y = {1, 2}}, svg = tmp .. "\0.svg"} end,
-    "bad argument #1 to 'plot.lines' (field 'svg' may not contain a NUL byte", "svg")
+    "bad argument #1 to 'plot.lines' (field 'svg' must not contain a NUL byte", "svg")
   T.fails(function() csv.write(tmp .. "\0junk", {x = {1}}) end,
-    "bad argument #1 to 'csv.write' (path may not contain a NUL byte", "csv path")
+    "bad argument #1 to 'csv.write' (path must not contain a NUL byte", "csv path")
   T.fails(function() csv.write(tmp, {["a\0b"] = {1}}) end,
     "bad argument #2 to 'csv.write' (column name 'a", "csv column")
 end)

@@ -128,7 +128,7 @@ T.case("export_html runs the world on and writes one page", function()
   T.fails(function() w:export_html(path, {seconds = 3600, fps = 240}) end,
     "seconds x fps must be at most 20000 frames")
   T.fails(function() w:export_html(path, {show = "spin"}) end, "field 'show' must be one of")
-  T.fails(function() w:export_html(path .. "\0x") end, "may not contain a NUL byte")
+  T.fails(function() w:export_html(path .. "\0x") end, "must not contain a NUL byte")
   T.fails(function() w:export_html("/dev/full", {seconds = 0}) end,
     "bad argument #1 to 'world:export_html' (cannot write '/dev/full': No space left on device)")
   T.fails(function() w:export_html(path, {dt = 0}) end, "field 'dt'")
