@@ -150,6 +150,11 @@ bool Canvas::has_ink(int column, int row, Ink ink) const {
   return false;
 }
 
+bool Canvas::has_text(int column, int row) const {
+  return column >= 0 && row >= 0 && column < columns_ && row < rows_ &&
+         overlay_[static_cast<std::size_t>(row) * columns_ + column] >= 0;
+}
+
 // The glyph of a cell and, in `ink`, the ink it is shown in (0 for a blank).
 std::string Canvas::cell_glyph(int column, int row, Ink& ink) const {
   ink = 0;

@@ -58,6 +58,7 @@ class Canvas {
   bool lit(int column, int row) const;
   Ink cell_ink(int column, int row) const;
   bool has_ink(int column, int row, Ink ink) const;  // some dot of the cell has this ink
+  bool has_text(int column, int row) const;          // text was laid over the cell
 
   // The rows as text. `palette[ink]` is the ANSI SGR sequence of an ink ("\x1b[34m"); an empty
   // palette (or an empty entry) draws without colour. Each row ends with a reset when coloured.

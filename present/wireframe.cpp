@@ -139,8 +139,12 @@ void draw_arrow(const Painter& p, const SceneArrow& arrow) {
   const int dx = p.canvas.dots_x() / p.canvas.columns(), dy = p.canvas.dots_y() / p.canvas.rows();
   // One cell past the tip along the arrow (a cell is `aspect` dots' widths tall per dot row).
   const double cx = (x1 + 0.5) / dx + ux, cy = (y1 + 0.5) / dy + uy * dx / (dy * aspect);
-  p.canvas.text(static_cast<int>(std::floor(cx)), static_cast<int>(std::floor(cy)),
-                overlay_label(arrow.kind, p.style.unicode), s.ink);
+  int column = static_cast<int>(std::floor(cx));
+  const int row = static_cast<int>(std::floor(cy));
+  // Parallel vectors (ω and L of a body spinning about a principal axis) end at one cell: the
+  // later label goes beside the earlier one.
+  for (int tries = 0; tries < 3 && p.canvas.has_text(column, row); ++tries) ++column;
+  p.canvas.text(column, row, overlay_label(arrow.kind, p.style.unicode), s.ink);
 }
 
 void draw_overlays(const Painter& p, const Scene& scene) {

@@ -182,6 +182,16 @@ TEST(Wireframe, OverlaysPointWhereTheirVectorsDo) {
   EXPECT_LT(label_row, center_row - 2);
 }
 
+TEST(Wireframe, LabelsOfParallelArrowsAreBothShown) {
+  Scene scene;
+  scene.bodies.push_back(SceneBody{});
+  scene.arrows.push_back(SceneArrow{Overlay::omega, Point3::Zero(), Point3(1, 0, 0)});
+  scene.arrows.push_back(SceneArrow{Overlay::momentum, Point3::Zero(), Point3(1, 0, 0)});
+  const Canvas canvas = draw_scene(scene, camera_at(Point3(0, 0, 5)), 60, 30, TextStyle{true, false});
+  const std::string row = canvas.lines()[15];
+  EXPECT_NE(row.find("ωL"), std::string::npos) << row;
+}
+
 TEST(Wireframe, DefaultFramingKeepsTheSceneInside) {
   Scene scene;
   for (int i = 0; i < 5; ++i) {
