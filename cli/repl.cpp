@@ -2,8 +2,10 @@
 
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 
+#include "cli/chunk_scanner.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/limits.hpp"
 #include "cli/line_reader.hpp"
@@ -55,31 +57,70 @@ bool incomplete_expression(lua_State* L, const std::string& chunk) {
   return result;
 }
 
+// Compiles the chunk under the limits (a huge chunk takes time and memory to compile), first
+// as an expression, then as statements, and pushes the function or the error. Returns true
+// when that ends the chunk: it compiled, or it is wrong otherwise than by being incomplete.
+bool compile(lua_State* L, const std::string& chunk, int& status) {
+  const TimedRun timed(L);
+  if (load_expression(L, chunk)) {
+    status = LUA_OK;
+    return true;
+  }
+  status = load_text(L, chunk.data(), chunk.size(), chunkname);
+  return !incomplete(L, status) &&
+         !(status == LUA_ERRSYNTAX && incomplete_expression(L, chunk));
+}
+
+// A chunk that cannot be complete yet (cli/chunk_scanner.hpp) is compiled only while it is
+// small or each time it has doubled: an error inside it is still found, and the work of all
+// the compilations stays proportional to the chunk's length.
+constexpr std::size_t small_chunk_bytes = 4096;
+
+bool worth_compiling(const std::string& chunk, std::size_t compiled_size,
+                     const ChunkScanner& scanner) {
+  return chunk.size() <= small_chunk_bytes || !scanner.open() || chunk.size() >= 2 * compiled_size;
+}
+
+MemoryBudget* budget_of(lua_State* L) {
+  LimitedState* state = LimitedState::of(L);
+  return state != nullptr ? &state->budget() : nullptr;
+}
+
 // Reads and compiles one chunk: the function (or the syntax error) is pushed and `status` set.
 // The lines read so far are tried as an expression, then as statements; while either is
-// incomplete another line is read (a chunk on several lines behaves as on one). Returns
-// `interrupted` or `end` with nothing pushed.
+// incomplete another line is read (a chunk on several lines behaves as on one). The chunk's
+// text counts against the memory limit. Returns `interrupted` or `end` with nothing pushed.
 ReadStatus read_chunk(lua_State* L, LineReader& reader, int& status) {
   std::string chunk;
   const ReadStatus first = reader.read(prompt(L, true).c_str(), chunk);
   if (first != ReadStatus::line) return first;
   if (chunk[0] == '=') chunk = "return " + chunk.substr(1);  // Lua 5.2's `=expression`
-  for (;;) {
-    if (load_expression(L, chunk)) {
-      status = LUA_OK;
-      break;
+  ChunkScanner scanner;
+  scanner.feed(chunk);
+  std::size_t compiled_size = 0;
+  try {
+    const ChargeHeap charge(budget_of(L));
+    for (;;) {
+      if (worth_compiling(chunk, compiled_size, scanner)) {
+        compiled_size = chunk.size();
+        if (compile(L, chunk, status)) break;
+        lua_pop(L, 1);
+      }
+      std::string more;
+      const ReadStatus next = reader.read(prompt(L, false).c_str(), more);
+      if (next == ReadStatus::interrupted) return next;  // Ctrl-C abandons the whole chunk
+      if (next == ReadStatus::end) {  // report the "<eof>" error (or run what is complete)
+        compile(L, chunk, status);
+        break;
+      }
+      scanner.feed(more);
+      chunk += '\n';
+      chunk += more;
     }
-    status = load_text(L, chunk.data(), chunk.size(), chunkname);
-    if (!incomplete(L, status) && !(status != LUA_OK && incomplete_expression(L, chunk))) break;
-    std::string more;
-    const ReadStatus next = reader.read(prompt(L, false).c_str(), more);
-    if (next == ReadStatus::interrupted) {  // Ctrl-C abandons the whole chunk
-      lua_pop(L, 1);
-      return next;
-    }
-    if (next == ReadStatus::end) break;  // report the "<eof>" error
-    lua_pop(L, 1);
-    chunk += "\n" + more;
+  } catch (const std::bad_alloc&) {  // the chunk's text passed the memory limit
+    lua_pushliteral(L, "not enough memory");  // Lua's own message: interned, nothing allocated
+    status = LUA_ERRMEM;
+    return ReadStatus::line;
   }
   reader.remember(chunk);
   return ReadStatus::line;
@@ -100,8 +141,12 @@ void run_repl(lua_State* L, bool terminal) {
     const ReadStatus read = read_chunk(L, *reader, status);
     if (read == ReadStatus::end) break;
     if (read == ReadStatus::interrupted) continue;
+    if (status != LUA_OK) {  // a syntax error, or the limits stopped the reading
+      report_error(L, "");
+      continue;
+    }
     const TimedRun timed(L);  // the limits apply to each chunk
-    if (status == LUA_OK) status = call_chunk(L, 0, LUA_MULTRET, traceback);
+    status = call_chunk(L, 0, LUA_MULTRET, traceback);
     if (status == LUA_OK)
       print_results(L, base);
     else

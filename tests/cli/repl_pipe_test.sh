@@ -94,4 +94,42 @@ run "an error in -e skips the REPL, exit 1" --stdin $'1\n' -- "$rigidlab" -e 'er
 expect_status 1
 expect_stdout ""
 
+# Reading a chunk is linear in its length (issue 12, item 9): a 200,000-line `--[[` comment,
+# block, table or continued string is read in one pass, not compiled again after each line
+# (that took minutes; the timeout only turns a regression into a failure instead of a hang).
+big_chunk() {  # OPEN LINE CLOSE: OPEN, 200,000 times LINE, CLOSE, each on a line
+  printf '%s\n' "$1"
+  line=$2 awk 'BEGIN { for (i = 0; i < 200000; i++) print ENVIRON["line"] }'
+  printf '%s\n' "$3"
+}
+{ big_chunk '--[[' 'x' ']]'; printf 'print("after the comment")\n'; } >"$scratch/comment.lua"
+run "a 200,000-line comment" -- bash -c 'timeout 60 "$1" --timeout 10 <"$2"' _ "$rigidlab" "$scratch/comment.lua"
+expect_status 0
+expect_stdout $'after the comment\n'
+expect_stderr_empty
+{ big_chunk 'do' 'n = (n or 0) + 1' 'end'; printf 'print(n)\n'; } >"$scratch/block.lua"
+run "a 200,000-line block" -- bash -c 'timeout 60 "$1" --timeout 10 <"$2"' _ "$rigidlab" "$scratch/block.lua"
+expect_stdout $'200000\n'
+{ big_chunk 't = {' '1,' '}'; printf '#t\n'; } >"$scratch/table.lua"
+run "a 200,000-line table" -- bash -c 'timeout 60 "$1" --timeout 10 <"$2"' _ "$rigidlab" "$scratch/table.lua"
+expect_stdout $'200000\n'
+{ big_chunk 's = "\' 'ab\' '"'; printf '#s\n'; } >"$scratch/string.lua"
+run "a string continued over 200,000 lines" -- bash -c 'timeout 60 "$1" --timeout 10 <"$2"' _ "$rigidlab" "$scratch/string.lua"
+expect_stdout $'600001\n'
+# An error inside a long open chunk is still reported, found when the chunk has doubled (past
+# 4 KB, the chunk is no longer compiled after every line).
+{
+  printf 'f = function()\n'
+  line='  x = 1' awk 'BEGIN { for (i = 0; i < 1000; i++) print ENVIRON["line"] }'
+  printf '  local y = = 1\nend\nprint("next")\n'
+} >"$scratch/error.lua"
+run "a syntax error inside a long function" -- bash -c '"$1" <"$2"' _ "$rigidlab" "$scratch/error.lua"
+expect_stderr_line 1 "stdin:1002: unexpected symbol near '='"
+expect_stdout $'next\n'
+# The pending chunk's text counts against --max-memory: a comment that never ends is stopped.
+run "a comment that never ends: the memory limit" -- bash -c \
+  '{ printf "%s\n" "--[["; awk "BEGIN { for (i = 0; i < 40000; i++) printf \"%01000d\\n\", 0 }"; printf "]]\nprint(\"after\")\n"; } | "$1" --max-memory 16' \
+  _ "$rigidlab"
+expect_stderr_line 1 "stopped: the memory limit (16 MB) reached"
+
 finish
