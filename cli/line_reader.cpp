@@ -1,16 +1,14 @@
 #include "cli/line_reader.hpp"
 
 #include <editline/readline.h>
-#include <unistd.h>
 
-#include <cerrno>
-#include <climits>
 #include <clocale>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
 #include "cli/completion.hpp"
+#include "cli/history_file.hpp"
 #include "cli/interrupt.hpp"
 
 namespace rigidlab::cli {
@@ -18,24 +16,15 @@ namespace {
 
 constexpr int history_size = 1000;  // entries kept in the file
 
-// $HOME/.rigidlab_history, through a symbolic link to the file it names; "" without HOME.
-std::string history_file() {
-  const char* home = std::getenv("HOME");
-  if (home == nullptr || *home == '\0') return "";
-  const std::string path = std::string(home) + "/.rigidlab_history";
-  char resolved[PATH_MAX];
-  return realpath(path.c_str(), resolved) != nullptr ? resolved : path;
-}
-
 class TerminalReader final : public LineReader {
  public:
-  explicit TerminalReader(lua_State* L) : history_path_(history_file()) {
+  explicit TerminalReader(lua_State* L) {
     std::setlocale(LC_CTYPE, "");  // multibyte input (é, →) in a UTF-8 terminal
     rl_readline_name = "rigidlab";  // for conditionals in ~/.editrc
     install_completion(L);
     using_history();
     stifle_history(history_size);
-    if (!history_path_.empty()) read_history(history_path_.c_str());
+    history_.load();
     if (history_length > 0) {
       if (HIST_ENTRY* last = history_get(history_base + history_length - 1)) last_ = last->line;
     }
@@ -62,27 +51,12 @@ class TerminalReader final : public LineReader {
     if (chunk.find_first_not_of(" \t") == std::string::npos || chunk == last_) return;
     last_ = chunk;
     add_history(chunk.c_str());
-    save();
+    history_.save();
   }
 
  private:
-  // Rewrites the file through a temporary one and a rename, so an interrupted write never
-  // leaves a truncated history. Says once why, when it cannot.
-  void save() {
-    if (history_path_.empty() || save_failed_) return;
-    const std::string temporary = history_path_ + ".tmp" + std::to_string(getpid());
-    int error = write_history(temporary.c_str());
-    if (error == 0 && std::rename(temporary.c_str(), history_path_.c_str()) != 0) error = errno;
-    if (error == 0) return;
-    std::remove(temporary.c_str());
-    save_failed_ = true;
-    std::fprintf(stderr, "rigidlab: the history is not saved (cannot write %s: %s)\n",
-                 history_path_.c_str(), std::strerror(error));
-  }
-
-  std::string history_path_;
+  HistoryFile history_;
   std::string last_;  // the newest entry: a repeated chunk is not stored twice
-  bool save_failed_ = false;
 };
 
 class StreamReader final : public LineReader {

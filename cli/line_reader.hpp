@@ -22,9 +22,8 @@ class LineReader {
 };
 
 // The terminal reader: libedit initialised and the history loaded now, not before. Tab
-// completes the names reachable from the globals of L. The history file is
-// $HOME/.rigidlab_history, rewritten after every chunk so that os.exit or a kill loses
-// nothing; without HOME the history lasts for the session only.
+// completes the names reachable from the globals of L. The history file (cli/history_file.hpp)
+// is rewritten after every chunk so that os.exit or a kill loses nothing.
 std::unique_ptr<LineReader> make_terminal_reader(lua_State* L);
 // Plain lines from stdin.
 std::unique_ptr<LineReader> make_stream_reader();

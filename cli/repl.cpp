@@ -98,17 +98,19 @@ ReadStatus read_chunk(lua_State* L, LineReader& reader, int& status) {
   ChunkScanner scanner;
   scanner.feed(chunk);
   std::size_t compiled_size = 0;
+  MemoryBudget* budget = budget_of(L);
   try {
-    const ChargeHeap charge(budget_of(L));
     for (;;) {
       if (worth_compiling(chunk, compiled_size, scanner)) {
         compiled_size = chunk.size();
+        const ChargeHeap charge(budget);
         if (compile(L, chunk, status)) break;
         lua_pop(L, 1);
       }
-      std::string more;
+      std::string more;  // the line editor is not charged: it is C, no exception may cross it
       const ReadStatus next = reader.read(prompt(L, false).c_str(), more);
       if (next == ReadStatus::interrupted) return next;  // Ctrl-C abandons the whole chunk
+      const ChargeHeap charge(budget);
       if (next == ReadStatus::end) {  // report the "<eof>" error (or run what is complete)
         compile(L, chunk, status);
         break;
