@@ -87,6 +87,18 @@ run "a directory as script" -- "$rigidlab" "$scratch"
 expect_status 2
 expect_stderr_line 1 "rigidlab: cannot read $scratch: Is a directory"
 
+# Names the file system refuses are clean usage errors too, never an uncaught exception
+# (issue 12, item 4): a name too long, a loop of symbolic links.
+long_name=$(printf 'a%.0s' {1..300}).lua
+run "a script name too long" -- "$rigidlab" "$long_name"
+expect_status 2
+expect_stderr_line 1 "rigidlab: cannot open $long_name: File name too long"
+ln -s "$scratch/loop_b" "$scratch/loop_a"
+ln -s "$scratch/loop_a" "$scratch/loop_b"
+run "a loop of symbolic links as script" -- "$rigidlab" "$scratch/loop_a"
+expect_status 2
+expect_stderr_line 1 "rigidlab: cannot open $scratch/loop_a: Too many levels of symbolic links"
+
 run "os.exit(3) exits 3" -- "$rigidlab" -e 'print("bye") os.exit(3)'
 expect_status 3
 expect_stdout $'bye\n'
@@ -153,7 +165,9 @@ expect_stderr_line 2 "stack traceback:"
 # wait_or_kill PID: waits for PID, keeping its exit status in $status; kills it after 10 s,
 # so that a test of an interruption fails instead of hanging when the interruption fails.
 wait_or_kill() {
-  (sleep 10 && kill -KILL "$1") >/dev/null 2>&1 &
+  # A new bash, not a subshell: a subshell killed just after its fork would run this test's
+  # EXIT trap (removing $scratch) before resetting it.
+  bash -c 'sleep 10 && kill -KILL "$1"' _ "$1" >/dev/null 2>&1 &
   local killer=$!
   status=0
   wait "$1" || status=$?
