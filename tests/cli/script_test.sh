@@ -153,7 +153,7 @@ expect_stdout $'true\ttrue\tstring\n'
 "$rigidlab" -e 'print("looping") io.stdout:flush() while true do end' \
   >"$scratch/out" 2>"$scratch/err" &
 looping=$!
-for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+for _ in $(seq 600); do [[ -s $scratch/out ]] && break; sleep 0.05; done  # 30 s at most
 kill -INT "$looping"
 case_name="SIGINT interrupts a script"
 status=0
@@ -162,12 +162,12 @@ expect_status 1
 expect_stderr_line 1 "rigidlab: (command line):1: interrupted!"
 expect_stderr_line 2 "stack traceback:"
 
-# wait_or_kill PID: waits for PID, keeping its exit status in $status; kills it after 10 s,
+# wait_or_kill PID: waits for PID, keeping its exit status in $status; kills it after 60 s,
 # so that a test of an interruption fails instead of hanging when the interruption fails.
 wait_or_kill() {
   # A new bash, not a subshell: a subshell killed just after its fork would run this test's
   # EXIT trap (removing $scratch) before resetting it.
-  bash -c 'sleep 10 && kill -KILL "$1"' _ "$1" >/dev/null 2>&1 &
+  bash -c 'sleep 60 && kill -KILL "$1"' _ "$1" >/dev/null 2>&1 &
   local killer=$!
   status=0
   wait "$1" || status=$?
@@ -178,7 +178,7 @@ start_looping() {
   : >"$scratch/out"
   "$rigidlab" -e "$1" >"$scratch/out" 2>"$scratch/err" &
   looping=$!
-  for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+  for _ in $(seq 600); do [[ -s $scratch/out ]] && break; sleep 0.05; done  # 30 s at most
 }
 # ... a loop inside a coroutine too (hooks are per thread; issue 12, item 10).
 start_looping 'coroutine.wrap(function() print("looping") io.stdout:flush() while true do end end)()'
@@ -194,7 +194,7 @@ expect_stderr_line 1 "rigidlab: (command line):1: interrupted!"
   printf 'print("still here")\n'
 } | "$rigidlab" >"$scratch/out" 2>"$scratch/err" &
 looping=$!  # of a pipeline in the background: its last process, rigidlab
-for _ in $(seq 100); do [[ -s $scratch/out ]] && break; sleep 0.05; done
+for _ in $(seq 600); do [[ -s $scratch/out ]] && break; sleep 0.05; done  # 30 s at most
 kill -INT "$looping" || true
 kill -INT "$looping" || true
 case_name="two SIGINTs in a row: the REPL goes on"
