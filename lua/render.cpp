@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include "lua/articulation.hpp"
 #include "lua/modules.hpp"
 #include "lua/record.hpp"
 #include "lua/world.hpp"
@@ -106,11 +107,11 @@ bool apply_camera(const CameraRequest& c, present::Camera& camera, std::string& 
   return problem.empty();
 }
 
-std::string render_world(lua_State* L, int world, const RenderRequest& request) {
-  SceneRequest scene_request = request.scene;
-  if (request.trail) scene_request.trails = recorded_trails(L, world, 2);
-  const LuaWorld& w = check_world(L, world);  // after every option was read
-  const present::Scene scene = scene_from_world(w.world, scene_request);
+namespace {
+
+// Draws `scene` as the request asks, the camera framing the scene where the request leaves
+// it free.
+std::string draw(lua_State* L, const present::Scene& scene, const RenderRequest& request) {
   present::RenderOptions options;
   options.width = request.width;
   options.height = request.height;
@@ -123,6 +124,15 @@ std::string render_world(lua_State* L, int world, const RenderRequest& request) 
   return present::render_scene(scene, options);
 }
 
+}  // namespace
+
+std::string render_world(lua_State* L, int world, const RenderRequest& request) {
+  SceneRequest scene_request = request.scene;
+  if (request.trail) scene_request.trails = recorded_trails(L, world, 2);
+  const LuaWorld& w = check_world(L, world);  // after every option was read
+  return draw(L, scene_from_world(w.world, scene_request), request);
+}
+
 namespace {
 
 int world_render(lua_State* L) {
@@ -133,6 +143,34 @@ int world_render(lua_State* L) {
   lua_pushlstring(L, frame.data(), frame.size());
   return 1;
 }
+
+// art:render{...}: the same options; the overlays an articulation has are frames, omega and
+// joints, and asking for another is an error rather than a picture without it.
+int articulation_render(lua_State* L) {
+  check_articulation(L, 1);
+  check_no_extra_args(L, 2);
+  const RenderRequest request = check_render_request(L, 2);
+  const SceneRequest& s = request.scene;
+  const char* missing = s.momentum ? "L" : s.contacts ? "contacts" : s.ellipsoid ? "ellipsoid"
+                        : request.trail ? "trail" : nullptr;
+  if (missing != nullptr)
+    arg_error(L, 2, "field 'show': '%s' is not drawn for articulations (they show 'frames', "
+              "'omega' and 'joints')", missing);
+  LuaArticulation& a = check_articulation(L, 1);  // after every option was read
+  const present::Scene scene = protect(L, [&] { return scene_from_articulation(a.art, s); });
+  const std::string frame = draw(L, scene, request);
+  lua_pushlstring(L, frame.data(), frame.size());
+  return 1;
+}
+
+const Entry articulation_methods[] = {
+    {"render", articulation_render, "articulation:render",
+     "art:render{width =, height =, camera =, show =, ascii =, color =, legend =}",
+     "One frame of the articulation as text, as w:render draws a world: each link as lines\n"
+     "from its joint to its COM (a cross) and to its children's joints. show: 'frames' (link\n"
+     "axes at the joints), 'omega' (each link's angular velocity at its COM), 'joints'\n"
+     "(markers at the joints and the fixed base)."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry methods[] = {
     {"render", world_render, "world:render",
@@ -152,6 +190,9 @@ const Entry methods[] = {
 
 }  // namespace
 
-void open_render(lua_State* L, int) { add_methods(L, world_type, methods); }
+void open_render(lua_State* L, int) {
+  add_methods(L, world_type, methods);
+  add_methods(L, articulation_type, articulation_methods);
+}
 
 }  // namespace rigidlab::lua

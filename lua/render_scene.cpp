@@ -163,4 +163,57 @@ present::Scene scene_from_world(const World& world, const SceneRequest& request)
   return scene;
 }
 
+present::Scene scene_from_articulation(Articulation& art, const SceneRequest& request) {
+  present::Scene scene;
+  const ArticulationModel& model = art.model();
+  const int n = model.link_count();
+  std::vector<Vec3> joints(n), coms(n), omegas(n);
+  std::vector<double> lengths;
+  for (int i = 0; i < n; ++i) {
+    joints[i] = art.link_position(i);
+    coms[i] = art.point_position(i, model.links()[i].spec.com);
+    omegas[i] = art.angular_velocity(i);
+  }
+  for (int i = 0; i < n; ++i) {
+    const LinkSpec& spec = model.links()[i].spec;
+    present::SceneBody link;
+    link.shape = present::BodyShape::segments;
+    link.position = coms[i];
+    link.rotation = art.link_rotation(i);
+    link.segments.emplace_back(joints[i], coms[i]);
+    for (int j = 0; j < n; ++j)
+      if (model.links()[j].spec.parent == i) link.segments.emplace_back(joints[i], joints[j]);
+    for (const auto& [from, to] : link.segments) lengths.push_back((to - from).norm());
+    link.name = spec.name.empty() ? "link" : "link " + spec.name;
+    scene.bodies.push_back(link);
+    if (request.joints && spec.joint != JointType::fixed)
+      scene.markers.push_back(present::SceneMarker{present::Overlay::joint, joints[i]});
+  }
+  if (request.joints && !model.free_base())
+    scene.markers.push_back(present::SceneMarker{present::Overlay::joint, model.base_position()});
+  std::sort(lengths.begin(), lengths.end());
+  const double typical = lengths.empty() || !(lengths[lengths.size() / 2] > 0.0)
+                             ? 0.5 : lengths[lengths.size() / 2];
+  if (request.frames)
+    for (int i = 0; i < n; ++i) {
+      const Mat3 R = art.link_rotation(i);
+      const present::Overlay axes[3] = {present::Overlay::axis_x, present::Overlay::axis_y,
+                                        present::Overlay::axis_z};
+      for (int k = 0; k < 3; ++k)
+        scene.arrows.push_back(present::SceneArrow{axes[k], joints[i], 0.5 * typical * R.col(k)});
+    }
+  if (request.omega) {
+    double largest = 0.0;
+    const double scale = scale_for(omegas, typical, largest);
+    for (int i = 0; i < n; ++i)
+      if (is_finite(omegas[i]))
+        scene.arrows.push_back(present::SceneArrow{present::Overlay::omega, coms[i], scale * omegas[i]});
+    scene.notes.push_back({present::Overlay::omega,
+                           "(" + std::string(n > 1 ? "largest " : "") + number(largest) + " rad/s)", ""});
+  }
+  for (const std::vector<Vec3>& trail : request.trails)
+    if (trail.size() > 1) scene.curves.push_back(present::SceneCurve{present::Overlay::trail, trail});
+  return scene;
+}
+
 }  // namespace rigidlab::lua

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "engine/articulation.hpp"
 #include "engine/world.hpp"
 #include "present/scene.hpp"
 
@@ -28,5 +29,11 @@ struct SceneRequest {
 // rest, the inertia ellipsoid xᵀ I x = const with its longest semi-axis at the reach. The
 // legend notes give the magnitudes, in ASCII.
 present::Scene scene_from_world(const World& world, const SceneRequest& request);
+
+// The scene of an articulation: each link as segments from its joint to its COM and to its
+// children's joints, a cross at the COM; `joints` marks the joints (and a fixed base), `frames`
+// the link axes at each joint, `omega` each link's angular velocity at its COM (one scale).
+// `momentum`, `contacts` and `ellipsoid` have nothing to show for an articulation yet.
+present::Scene scene_from_articulation(Articulation& art, const SceneRequest& request);
 
 }  // namespace rigidlab::lua

@@ -32,6 +32,10 @@ void scene_bounds(const Scene& scene, Point3& center, double& radius) {
                      : b.shape == BodyShape::sphere ? b.radius
                                                     : 0.0;
     spheres.emplace_back(b.position, r);
+    for (const auto& [from, to] : b.segments) {
+      spheres.emplace_back(from, 0.0);
+      spheres.emplace_back(to, 0.0);
+    }
   }
   // An arrow counts as the sphere it sweeps as it turns, so the framing does not follow its
   // direction from frame to frame.

@@ -61,6 +61,12 @@ void scene_json(std::string& out, const HtmlFrame& f) {
     point(out, b.half_extents);
     out += ',';
     number(out, b.radius);
+    for (const auto& [from, to] : b.segments) {  // then the segments' ends, six numbers each
+      out += ',';
+      point(out, from);
+      out += ',';
+      point(out, to);
+    }
     out += "]";
   }
   out += "],\"a\":[";

@@ -79,7 +79,7 @@ function ellipse(V, c, u, v) {
 function stroke(color, width, dash) {
   g.strokeStyle = color; g.lineWidth = width; g.setLineDash(dash || []); g.stroke(); g.beginPath();
 }
-function body(V, b, i) {  // [shape, position, R (rows), half extents, radius]
+function body(V, b, i) {  // [shape, position, R (rows), half extents, radius, segments' ends]
   const p = b.slice(1, 4), R = b.slice(4, 13), h = b.slice(13, 16), r = b[16];
   g.beginPath();
   if (b[0] === 2) {
@@ -95,6 +95,7 @@ function body(V, b, i) {  // [shape, position, R (rows), half extents, radius]
       ellipse(V, sub(p, mul(n, r * r / d)), mul(u, rho), mul(cross(n, u), rho));
     }
   } else {
+    for (let k = 17; k + 5 < b.length; k += 6) segment(V, b.slice(k, k + 3), b.slice(k + 3, k + 6));
     const q = project(V, p);
     if (q) { g.moveTo(q[0] - 4, q[1]); g.lineTo(q[0] + 4, q[1]); g.moveTo(q[0], q[1] - 4); g.lineTo(q[0], q[1] + 4); }
   }

@@ -13,7 +13,9 @@ namespace rigidlab::present {
 using Point3 = Eigen::Vector3d;
 using Basis3 = Eigen::Matrix3d;  // columns: unit axes (a rotation, body -> world)
 
-enum class BodyShape { point, sphere, box };
+// A link of an articulation is drawn as `segments` (from its joint to its COM and to its
+// children's joints) with a cross at its COM.
+enum class BodyShape { point, sphere, box, segments };
 
 struct SceneBody {
   BodyShape shape = BodyShape::point;
@@ -21,6 +23,7 @@ struct SceneBody {
   Basis3 rotation = Basis3::Identity();          // body -> world
   Point3 half_extents = Point3::Zero();          // box, m
   double radius = 0.0;                           // sphere, m
+  std::vector<std::pair<Point3, Point3>> segments;  // segments, world
   std::string name;                              // for the legend: "box 0.5×0.15×1"
 };
 

@@ -44,19 +44,28 @@ struct Painter {
     }
   }
 
-  // A mark of a few dots around the projection of p: a cross ('x') or a plus ('+').
-  void mark(const Point3& p, Ink ink, bool diagonal) const {
+  // A mark of a few dots around the projection of p: a cross ('x'), a plus ('+') or a ring
+  // ('o'); in ASCII the one character.
+  void mark(const Point3& p, Ink ink, char shape) const {
     double x, y;
     if (!view.point(p, x, y)) return;
     Stroke s = solid_stroke(ink);
-    s.glyph = diagonal ? 'x' : '+';
-    const double r = canvas.braille() ? 2.0 : 0.0;
-    if (diagonal) {
+    s.glyph = shape;
+    if (!canvas.braille()) {
+      canvas.line(x, y, x, y, s);
+      return;
+    }
+    const double r = 2.0;
+    if (shape == 'x') {
       canvas.line(x - r, y - r, x + r, y + r, s);
       canvas.line(x - r, y + r, x + r, y - r, s);
-    } else {
+    } else if (shape == '+') {
       canvas.line(x - r, y, x + r, y, s);
       canvas.line(x, y - r, x, y + r, s);
+    } else {
+      for (int k = 0; k < 8; ++k)
+        canvas.line(x + r * std::cos(k * pi / 4), y + r * std::sin(k * pi / 4),
+                    x + r * std::cos((k + 1) * pi / 4), y + r * std::sin((k + 1) * pi / 4), s);
     }
   }
 };
@@ -86,7 +95,9 @@ void draw_body(const Painter& p, const SceneBody& b, const Stroke& s) {
       p.ellipse(b.position - (r * r / d) * n, rho * u, rho * n.cross(u), s);
     }
   } else {
-    p.mark(b.position, s.ink, false);
+    int phase = 0;
+    for (const auto& [from, to] : b.segments) phase = p.segment(from, to, s, phase);
+    p.mark(b.position, s.ink, '+');
   }
 }
 
@@ -164,7 +175,7 @@ void draw_overlays(const Painter& p, const Scene& scene) {
       phase = p.segment(curve.points[i - 1], curve.points[i], s, phase);
   }
   for (const SceneMarker& m : scene.markers)
-    p.mark(m.position, overlay_ink(m.kind), m.kind == Overlay::contact);
+    p.mark(m.position, overlay_ink(m.kind), m.kind == Overlay::contact ? 'x' : 'o');
   for (const SceneArrow& a : scene.arrows) draw_arrow(p, a);
 }
 

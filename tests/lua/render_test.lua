@@ -112,6 +112,19 @@ T.case("errors", function()
   T.fails(function() world.render(5) end, "world expected, got number")
 end)
 
+T.case("art:render draws links from their joints, with joint markers", function()
+  local art = articulation{gravity = vec3(0, 0, 0)}
+  art:add_link{joint = "revolute", axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0)}
+  local lines = lines_of(art:render{width = 41, height = 21, ascii = true, show = "joints",
+    legend = false, camera = {eye = vec3(0.5, 0, 6), target = vec3(0.5, 0, 0)}})
+  local joint, row = find_cell(lines, "o")
+  local com = lines[row] and lines[row]:find("+", 1, true)
+  assert(joint and com and joint < com, "the joint left of the COM on one row: " .. table.concat(lines, "\n"))
+  assert(lines[row]:sub(joint + 1, com - 1):find("^%-+$"), "a horizontal link between them")
+  T.fails(function() art:render{show = "L"} end, "'L' is not drawn for articulations")
+  T.fails(function() art:render{width = 3} end, "field 'width' must be an integer from 10 to 1000")
+end)
+
 T.case("export_html runs the world on and writes one page", function()
   local w = spinning_box()
   local path = os.tmpname()
