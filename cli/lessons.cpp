@@ -10,6 +10,7 @@
 #include <set>
 
 #include "cli/check.hpp"
+#include "cli/lesson_export.hpp"
 #include "cli/lesson_files.hpp"
 #include "cli/lesson_keys.hpp"
 #include "cli/lesson_menu.hpp"
@@ -33,6 +34,7 @@ bool interactive() { return isatty(STDIN_FILENO) && isatty(STDOUT_FILENO); }
 struct LessonOptions {
   const Limits* limits = nullptr;  // the command line's, else the defaults for the lesson
   int from_step = 1;               // --from
+  std::string export_path;         // --export FILE.md
 };
 
 // What the student chose at the end of a lesson (or by m or q in it).
@@ -52,7 +54,7 @@ struct LessonRun {
   const LessonCatalog* catalog = nullptr;
   const LessonOptions* options = nullptr;
   bool interactive = false;
-  TerminalPage page;
+  LessonPage* page = nullptr;  // the terminal, or a transcript (--export)
   lua::LessonContext context;
   std::vector<StepResult> steps;
   bool loaded = false;
@@ -226,7 +228,7 @@ void collect_uses(lua_State* L, int function, const fs::path& path, PasteLines& 
 void show_code(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int number) {
   const int top = lua_gettop(L);
   if (lua_rawgeti(L, lesson.runs, number) != LUA_TFUNCTION) {
-    run.page.note("  (this step has no code: it only explains)");
+    run.page->note("  (this step has no code: it only explains)");
     lua_settop(L, top);
     return;
   }
@@ -242,7 +244,7 @@ void show_code(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int num
                                         std::to_string(ar.lastlinedefined) +
                                         "); to try it, paste these lines into the REPL "
                                         "(rigidlab):",
-                                    "  ", static_cast<size_t>(run.page.width()));
+                                    "  ", static_cast<size_t>(run.page->width()));
   std::string code;
   for (const std::string& line : paste.values) code += line + "\n";
   for (const std::string& f : paste.functions) code += f;
@@ -252,7 +254,7 @@ void show_code(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int num
     text += "  " + code.substr(start, end - start) + "\n";
     start = end + 1;
   }
-  run.page.write("\n" + text);
+  run.page->write("\n" + text);
   lua_settop(L, top);
 }
 
@@ -261,7 +263,7 @@ void show_code(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int num
 // Shows step `number` and runs it; its result replaces the step's last one.
 void show_step(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx, int number,
                const LessonClock& clock) {
-  run.page.step(lesson.spec, number);
+  run.page->step(lesson.spec, number);
   const int passed = run.context.passed, failed = run.context.failed;
   std::string error;
   StepResult& result = run.steps[static_cast<size_t>(number) - 1];
@@ -270,9 +272,9 @@ void show_step(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx
   result.passed = run.context.passed - passed;
   result.failed = run.context.failed - failed;
   if (!result.error) return;
-  run.page.error(clock.explain(error));
+  run.page->error(clock.explain(error));
   if (clock.limit_reached()) {  // the limits are the whole lesson's: no step would run
-    run.page.note("\nThe lesson is stopped: its limits count all of its steps.");
+    run.page->note("\nThe lesson is stopped: its limits count all of its steps.");
     run.stopped = true;
   }
 }
@@ -297,27 +299,27 @@ void key_help(LessonRun& run, bool at_end) {
                "again, c show its code"
              : "keys: Enter (or →) next step, b (or ←) back, r run this step again, c show "
                "its code, m menu, q quit";
-  run.page.write(lua::fit_words(keys, "  ", static_cast<size_t>(run.page.width())));
+  run.page->write(lua::fit_words(keys, "  ", static_cast<size_t>(run.page->width())));
 }
 
 // After the last step: the summary, the next lesson's title and its prompt.
 void end_screen(LessonRun& run) {
-  run.page.note("\n" + summary(run));
+  run.page->note("\n" + summary(run));
   const LessonFile* next = run.catalog->next(*run.file);
   if (next != nullptr && run.file->folder >= 0) {
     const LessonInfo info = read_lesson_info(*next);
-    run.page.write(lua::fit_words_after("\nNext: ", next->id + (info.error.empty() ? " — " + info.title : ""),
-                                        static_cast<size_t>(run.page.width())));
+    run.page->write(lua::fit_words_after("\nNext: ", next->id + (info.error.empty() ? " — " + info.title : ""),
+                                        static_cast<size_t>(run.page->width())));
   }
   else if (run.file->folder >= 0)
-    run.page.note("\nThat was the last lesson of the tour.");
+    run.page->note("\nThat was the last lesson of the tour.");
 }
 
 std::string prompt(const LessonRun& run, bool at_end) {
   const bool has_next = run.file->folder >= 0 && run.catalog->next(*run.file) != nullptr;
   if (at_end)
     return has_next ? "[Enter] next lesson   m menu   q quit > " : "[Enter] quit   m menu > ";
-  return run.page.width() >= 60 ? "[Enter] next step   b back   c code   r again   q quit > "
+  return run.page->width() >= 60 ? "[Enter] next step   b back   c code   r again   q quit > "
                                 : "[Enter] next   b back   q quit   ? keys > ";
 }
 
@@ -330,26 +332,26 @@ void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, in
     const bool at_end = number == count || run.stopped;
     if (at_end && show_end) end_screen(run);
     show_end = false;
-    run.page.write("\n" + prompt(run, at_end));
+    run.page->write("\n" + prompt(run, at_end));
     clock.pause();
     const KeyPress key = read_key();
     clock.resume();
-    run.page.write(key.kind == KeyPress::Kind::letter ? std::string(1, key.letter) + "\n" : "\n");
+    run.page->write(key.kind == KeyPress::Kind::letter ? std::string(1, key.letter) + "\n" : "\n");
     const char letter = key.kind == KeyPress::Kind::letter ? key.letter : 0;
     if (key.kind == KeyPress::Kind::end || letter == 'q') {
-      if (!at_end) run.page.note("\n" + summary(run));
+      if (!at_end) run.page->note("\n" + summary(run));
       run.next = Next::quit;
       return;
     }
     if (letter == 'm') {
-      if (!at_end) run.page.note("\n" + summary(run));
+      if (!at_end) run.page->note("\n" + summary(run));
       run.next = Next::menu;
       return;
     }
     if (letter == 'c') {
       show_code(L, run, lesson, number);
     } else if (run.stopped && (letter == 'b' || letter == 'r' || key.kind == KeyPress::Kind::back)) {
-      run.page.note("  (the lesson was stopped by its limits: no step runs again)");
+      run.page->note("  (the lesson was stopped by its limits: no step runs again)");
     } else if (key.kind == KeyPress::Kind::enter) {
       if (at_end) {
         run.next = run.file->folder >= 0 && run.catalog->next(*run.file) ? Next::next_lesson
@@ -379,7 +381,7 @@ int present_protected(lua_State* L) {
   LessonClock clock(L);
   lua::open_all(L);
   if (!run.file->trusted) lua::apply_sandbox(L);
-  lua_pushlightuserdata(L, &run.page);
+  lua_pushlightuserdata(L, run.page);
   lua_pushcclosure(L, page_print, 1);
   lua_setglobal(L, "print");
   LoadedLesson lesson;
@@ -398,24 +400,45 @@ int present_protected(lua_State* L) {
   }
   run.loaded = true;
   run.steps.assign(static_cast<size_t>(count), StepResult{});
-  run.context.output = &run.page;
-  run.context.width = run.page.width();
+  run.context.output = run.page;
+  run.context.width = run.page->width();
   run.context.tolerance = lesson.spec.tolerance;
   lua::push_lesson_context(L, run.context);
   const int ctx = lua_gettop(L);
   const LessonFolder* folder =
       run.file->folder >= 0 ? &run.catalog->folders[static_cast<size_t>(run.file->folder)] : nullptr;
-  run.page.heading(lesson.spec, folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
+  run.page->heading(lesson.spec, folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
   int number = run.options->from_step;
   show_step(L, run, lesson, ctx, number, clock);
   if (run.interactive) {
     step_with_keys(L, run, lesson, ctx, number, clock);
   } else {
     while (number < count && !run.stopped) show_step(L, run, lesson, ctx, ++number, clock);
-    run.page.note("\n" + summary(run));
+    run.page->note("\n" + summary(run));
   }
   run.context.ended = true;
   return 0;
+}
+
+// Writes the transcript and says where: "wrote FILE.md and 2 charts beside it (FILE-1.svg,
+// FILE-2.svg)" and the summary. The exit status: 1 for a check that failed or a file that could
+// not be written.
+int export_transcript(MarkdownPage& transcript, const std::string& summary, bool failed) {
+  std::string error;
+  if (!transcript.finish(error)) {
+    std::fprintf(stderr, "rigidlab: %s\n", error.c_str());
+    return 1;
+  }
+  const auto& files = transcript.files();
+  std::string charts;
+  for (size_t i = 0; i + 1 < files.size(); ++i)
+    charts += (i ? ", " : "") + files[i].filename().string();
+  std::printf("wrote %s", files.back().string().c_str());
+  if (files.size() > 1)
+    std::printf(" and %zu chart%s beside it (%s)", files.size() - 1, files.size() > 2 ? "s" : "",
+                charts.c_str());
+  std::printf("\n%s\n", summary.c_str());
+  return failed ? 1 : 0;
 }
 
 struct Outcome {
@@ -428,11 +451,15 @@ struct Outcome {
 // under the check limits (or the command line's).
 Outcome present_lesson(const LessonCatalog& catalog, const LessonFile& file,
                        const LessonOptions& options) {
+  TerminalPage terminal;
+  MarkdownPage transcript(options.export_path);
   LessonRun run;  // before the state: its context outlives the ctx
   run.file = &file;
   run.catalog = &catalog;
   run.options = &options;
-  run.interactive = interactive();
+  const bool exporting = !options.export_path.empty();
+  run.page = exporting ? static_cast<LessonPage*>(&transcript) : &terminal;
+  run.interactive = !exporting && interactive();
   const Limits limits = options.limits != nullptr ? *options.limits
                         : file.trusted            ? Limits{}
                                                   : default_check_limits();
@@ -455,6 +482,7 @@ Outcome present_lesson(const LessonCatalog& catalog, const LessonFile& file,
   }
   if (run.usage_error) return {exit_usage, Next::quit};
   if (!run.loaded) return {1, run.interactive ? Next::menu : Next::quit};
+  if (exporting) return {export_transcript(transcript, summary(run), run.failed()), Next::quit};
   return {run.failed() ? 1 : 0, run.next};
 }
 
@@ -546,6 +574,13 @@ int lesson_command(const std::vector<std::string>& arguments) {
         return usage_error("'--from' needs a step number >= 1, got '" +
                            lua::truncate_to_width(value, 60) + "'");
       options.from_step = std::stoi(value);
+    } else if (arguments[i] == "--export" || arguments[i].rfind("--export=", 0) == 0) {
+      const bool inline_value = arguments[i].size() > 8;
+      if (!inline_value && i + 1 == arguments.size())
+        return usage_error("'--export' needs a file name (FILE.md)");
+      options.export_path = inline_value ? arguments[i].substr(9) : arguments[++i];
+      if (options.export_path.empty())
+        return usage_error("'--export' needs a file name (FILE.md)");
     } else if (arguments[i] == "--") {
       names.insert(names.end(), arguments.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                    arguments.end());
@@ -562,6 +597,7 @@ int lesson_command(const std::vector<std::string>& arguments) {
   const LessonCatalog catalog = read_catalog();
   if (names.empty()) {
     if (options.from_step > 1) return usage_error("'--from' needs a lesson id or file");
+    if (!options.export_path.empty()) return usage_error("'--export' needs a lesson id or file");
     return tour(catalog, nullptr, options);
   }
   LessonFile file;

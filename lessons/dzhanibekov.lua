@@ -201,9 +201,15 @@ only logarithmically, which is why the flips are so regular.]],
         local w, b = spinning_box({integrator = "rk4"}, start)
         local T0, L0 = w:kinetic_energy(), w:angular_momentum():norm()
         local previous, times, rows = start.x, {}, {}
-        for _ = 1, math.floor(9 / dt + 0.5) do
+        local trace = {t = {}, x = {}, y = {}, z = {}}  -- ω in body axes, every 1/40 s
+        for i = 1, math.floor(9 / dt + 0.5) do
           w:step(dt)
           local x = body_omega(b).x
+          if i % 30 == 0 then
+            local omega = body_omega(b)
+            local n = #trace.t + 1
+            trace.t[n], trace.x[n], trace.y[n], trace.z[n] = w.time, omega.x, omega.y, omega.z
+          end
           if (x > 0) ~= (previous > 0) then
             times[#times + 1] = w.time - dt * x / (x - previous)   -- linear interpolation
             local n = #times
@@ -212,6 +218,10 @@ only logarithmically, which is why the flips are so regular.]],
           previous = x
         end
         ctx:table({"flip", "time (s)", "interval (s)"}, rows)
+        ctx:plot{{x = trace.t, y = trace.x, label = "ωx (the spin axis)"},
+                 {x = trace.t, y = trace.y, label = "ωy"}, {x = trace.t, y = trace.z, label = "ωz"},
+                 title = "ω in the box's axes: flip after flip", xlabel = "t (s)",
+                 ylabel = "rad/s", height = 10}
         for n = 2, #times do
           ctx:expect("interval " .. n - 1 .. " = 2K(k)/p", times[n] - times[n - 1], want, 1e-5)
         end

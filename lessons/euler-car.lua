@@ -98,6 +98,13 @@ closed form of its own update, which you get by summing an arithmetic series.]],
           rows[i] = {explicit.t[i], exact_position(explicit.t[i]), explicit.x[i], semi.x[i]}
         end
         ctx:table({"t (s)", "exact r", "explicit Euler r", "semi-implicit r"}, rows)
+        local times, parabola = {}, {}  -- the exact path, sampled finely enough to look smooth
+        for i = 0, 100 do times[#times + 1], parabola[#parabola + 1] = i / 10, exact_position(i / 10) end
+        ctx:plot{{x = times, y = parabola, label = "exact ½at²"},
+                 {x = explicit.t, y = explicit.x, label = "explicit Euler"},
+                 {x = semi.t, y = semi.x, label = "semi-implicit Euler"},
+                 title = "The car's position, Δt = 1 s", xlabel = "t (s)", ylabel = "r (m)",
+                 height = 10}
         ctx:expect("explicit Euler column = a·Δt²·n(n−1)/2", explicit.x, explicit_want)
         ctx:expect("semi-implicit column = a·Δt²·n(n+1)/2", semi.x, semi_want)
         ctx:expect("explicit Euler r(10 s)", explicit.x[11], 450)

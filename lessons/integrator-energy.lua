@@ -76,14 +76,14 @@ lives in the sixth decimal.]],
           rows[#rows + 1] = {times[i], euler[i], semi[i], rk4[i]}
         end
         ctx:table({"t (s)", "explicit Euler E (J)", "semi-implicit E (J)", "RK4 E (J)"}, rows)
-        plot.lines{{x = times, y = euler, label = "explicit Euler"},
-                   {x = times, y = semi, label = "semi-implicit Euler"},
-                   {x = times, y = rk4, label = "RK4"},
-                   title = "Spring energy (J)", xlabel = "t (s)", ylabel = "E (J)"}
-        plot.lines{{x = times, y = semi, label = "semi-implicit Euler"},
-                   {x = times, y = rk4, label = "RK4"},
-                   title = "Zoom: the two that stay near 1 J", xlabel = "t (s)",
-                   ylabel = "E (J)"}
+        ctx:plot{{x = times, y = euler, label = "explicit Euler"},
+                 {x = times, y = semi, label = "semi-implicit Euler"},
+                 {x = times, y = rk4, label = "RK4"},
+                 title = "Spring energy (J)", xlabel = "t (s)", ylabel = "E (J)", height = 10}
+        ctx:plot{{x = times, y = semi, label = "semi-implicit Euler"},
+                 {x = times, y = rk4, label = "RK4"},
+                 title = "Zoom: the two that stay near 1 J", xlabel = "t (s)",
+                 ylabel = "E (J)", height = 10}
         ctx:show("explicit Euler E(10 s) (J)", euler[steps + 1])
         ctx:show("semi-implicit E(10 s) (J)", semi[steps + 1])
         ctx:show("RK4 E(10 s) (J)", rk4[steps + 1])

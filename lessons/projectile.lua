@@ -83,6 +83,17 @@ it exactly.]],
           rows[#rows + 1] = {t, exact(t).y, explicit.x[i].y, semi.x[i].y, rk4.x[i].y}
         end
         ctx:table({"t (s)", "exact y (m)", "explicit y", "semi-implicit y", "RK4 y"}, rows)
+        local heights = {explicit = {}, semi = {}, rk4 = {}, exact = {}}
+        for i = 1, steps + 1 do
+          heights.explicit[i], heights.semi[i] = explicit.x[i].y, semi.x[i].y
+          heights.rk4[i], heights.exact[i] = rk4.x[i].y, exact(explicit.t[i]).y
+        end
+        ctx:plot{{x = explicit.t, y = heights.exact, label = "exact parabola"},
+                 {x = explicit.t, y = heights.explicit, label = "explicit Euler"},
+                 {x = explicit.t, y = heights.semi, label = "semi-implicit Euler"},
+                 {x = rk4.t, y = heights.rk4, label = "RK4 (on the parabola)"},
+                 title = "Height of the ball, Δt = 0.1 s", xlabel = "t (s)", ylabel = "y (m)",
+                 height = 10}
         local worst_rk4, worst_explicit, worst_semi = 0, 0, 0
         for i = 1, steps + 1 do
           local n = i - 1

@@ -13,8 +13,9 @@ local dt = 1 / 1200          -- s
 -- Drops the ball on a floor y ≥ 0 and follows it for `duration` seconds. Returns the world,
 -- the ball, the heights of the bottom of the ball at each apex after a bounce, the ball's
 -- velocity and spin sampled just after the first bounce, the first contact seen, the number
--- of bounces and the time from which the ball stays on the floor.
-local function drop(floor_friction, sideways_speed, duration, step)
+-- of bounces and the time from which the ball stays on the floor. With `trace`, its t and y
+-- lists get the height of the ball's bottom after every step.
+local function drop(floor_friction, sideways_speed, duration, step, trace)
   step = step or dt
   local w = world{}
   w:add_plane{normal = vec3(0, 1, 0), offset = 0, restitution = restitution,
@@ -44,6 +45,9 @@ local function drop(floor_friction, sideways_speed, duration, step)
       rising, top = false, nil
     end
     if ball.position.y - radius > 1e-6 then resting_from = i * step end
+    if trace then  -- the height of the ball's bottom after each step, for a plot
+      trace.t[#trace.t + 1], trace.y[#trace.y + 1] = w.time, ball.position.y - radius
+    end
   end
   return w, ball, apexes, after_first, material, bounces, resting_from
 end
@@ -84,7 +88,11 @@ a step per bounce (a ball that reaches the floor during a step bounces in the ne
       formula = "v' = e·v  ⇒  h' = v'²/(2g) = e²·h,   e² = 0.75² = 0.5625",
       run = function(ctx)
         local g, game_step = 9.81, 1 / 60
-        local _, _, apexes, _, contact, bounces, resting_from = drop(friction, 0, 6, game_step)
+        local trace = {t = {0}, y = {drop_height}}
+        local _, _, apexes, _, contact, bounces, resting_from = drop(friction, 0, 6, game_step, trace)
+        ctx:plot{{x = trace.t, y = trace.y, label = "height of the ball's bottom"},
+                 title = "Bounces at 60 Hz, each e² = 0.5625 as high", xlabel = "t (s)",
+                 ylabel = "m", height = 10}
         ctx:show("the contact's restitution", contact.restitution)
         ctx:show("the contact's friction", contact.friction)
         ctx:show("the contact's normal", contact.normal)

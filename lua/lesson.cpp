@@ -1,7 +1,9 @@
-// lesson{...} and the ctx of a lesson run: ctx:show / expect / expect_range / table / say. See
-// lua/lesson.hpp and API.md "Lessons and checks". A failed expectation is recorded, not raised:
-// a lesson shows every number, right or wrong, and the checker counts the failures.
+// lesson{...} and the ctx of a lesson run: ctx:show / expect / expect_range / table / say /
+// plot. See lua/lesson.hpp and API.md "Lessons and checks". A failed expectation is recorded,
+// not raised: a lesson shows every number, right or wrong, and the checker counts the failures.
 #include "lua/lesson.hpp"
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +12,12 @@
 
 #include "lua/binding.hpp"
 #include "lua/modules.hpp"
+#include "lua/output_file.hpp"
+#include "lua/plot.hpp"
 #include "lua/text_layout.hpp"
+#include "present/file.hpp"
+#include "present/svg_chart.hpp"
+#include "present/text_chart.hpp"
 
 namespace rigidlab::lua {
 namespace {
@@ -344,6 +351,24 @@ int context_say(lua_State* L) {
   return 0;
 }
 
+// ctx:plot{series..., title =, xlabel =, ylabel =, width =, height =, svg =}: plot.lines laid
+// out in the lesson (its chart model and checks: lua/plot.hpp).
+int context_plot(lua_State* L) {
+  LessonContext& context = check_context(L, 1);
+  check_no_extra_args(L, 2);
+  const PlotRequest request = check_plot_request(L, 2);
+  lua_pushliteral(L, "width");
+  const bool width_given = lua_rawget(L, 2) != LUA_TNIL;
+  lua_pop(L, 1);
+  if (!request.svg.empty())
+    write_or_raise(L, 2, "svg",
+                   [&] { present::write_file(request.svg, present::svg_chart(request.chart)); });
+  if (context.output != nullptr)
+    context.output->plot(request.chart,
+                         PlotSize{width_given ? request.width : 0, request.height, context.width});
+  return 0;
+}
+
 int context_gc(lua_State* L) {
   if (ContextBox* box = test_tagged<ContextBox>(L, 1, lesson_context_tag)) *box = nullptr;
   return 0;
@@ -480,6 +505,11 @@ const Entry context_methods[] = {
     {"expect_range", context_expect_range, "ctx:expect_range",
      "ctx:expect_range(label, got, low, high) -> ok",
      "Checks low <= got <= high and prints ✓ or ✗; either bound may be nil (no bound)."},
+    {"plot", context_plot, "ctx:plot",
+     "ctx:plot{ {x = xs, y = ys, label =}, ..., title =, xlabel =, ylabel =, width =, height = }",
+     "A line chart in the lesson, as plot.lines draws it, indented like the lesson's tables and\n"
+     "as wide as the lesson (unless width is given). An exported transcript (rigidlab lesson ID\n"
+     "--export FILE.md) has it as an SVG file beside the Markdown."},
     {"table", context_table, "ctx:table", "ctx:table(columns, rows)",
      "Prints an aligned table: columns a list of headings, rows a list of lists."},
     {"say", context_say, "ctx:say", "ctx:say(text)", "Prints a line of explanation."},
@@ -526,6 +556,39 @@ const Entry functions[] = {
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace
+
+std::string plot_text(const present::Chart& chart, const PlotSize& size, present::TextStyle style) {
+  const std::string indent = "    ";
+  present::TextChartOptions options;
+  options.height = size.height;
+  options.style = style;
+  options.width = size.width > 0 ? size.width : std::max(10, size.columns - 16);
+  std::string text = present::text_chart(chart, options);
+  if (size.width == 0) {  // widen or narrow the plot area to the lesson's columns
+    size_t widest = 0;
+    for (size_t start = 0; start <= text.size();) {
+      const size_t end = std::min(text.find('\n', start), text.size());
+      widest = std::max(widest, display_width(text.substr(start, end - start)));
+      start = end + 1;
+    }
+    const int spare = size.columns - static_cast<int>(indent.size() + widest);
+    if (spare != 0 && options.width + spare >= 10) {
+      options.width += spare;
+      text = present::text_chart(chart, options);
+    }
+  }
+  std::string out = "\n";  // a blank line above and below: a chart is a figure of its own
+  for (size_t start = 0; start <= text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    out += indent + text.substr(start, end - start) + "\n";
+    start = end + 1;
+  }
+  return out + "\n";
+}
+
+void LessonOutput::plot(const present::Chart& chart, const PlotSize& size) {
+  write(plot_text(chart, size, present::terminal_style(STDOUT_FILENO)));
+}
 
 void push_lesson_context(lua_State* L, LessonContext& context) {
   void* memory = lua_newuserdatauv(L, sizeof(Tagged<ContextBox>), 0);

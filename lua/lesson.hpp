@@ -10,8 +10,17 @@
 #include <vector>
 
 #include "lua/lesson_values.hpp"
+#include "present/chart.hpp"
+#include "present/style.hpp"
 
 namespace rigidlab::lua {
+
+// The size ctx:plot asks for: the plot area in character cells (`width` 0: fit the lesson's
+// `columns`, less the axis labels and the indent).
+struct PlotSize {
+  int width = 0, height = 15;
+  int columns = 80;
+};
 
 // Where a lesson's ctx writes: the terminal, a transcript being exported.
 class LessonOutput {
@@ -19,7 +28,14 @@ class LessonOutput {
   virtual ~LessonOutput() = default;
   // Lines as the lesson shows them, each ending in "\n".
   virtual void write(const std::string& lines) = 0;
+  // A chart of ctx:plot. By default drawn as text (plot_text, in the terminal's style) and
+  // written as lines; a transcript writes it as an SVG file. Must not throw.
+  virtual void plot(const present::Chart& chart, const PlotSize& size);
 };
+
+// A chart as a lesson shows it in text: present/text_chart indented like the lesson's tables
+// (4 columns) and, unless its width was asked for, as wide as fits in size.columns.
+std::string plot_text(const present::Chart& chart, const PlotSize& size, present::TextStyle style);
 
 // One run of a lesson: where its ctx writes and how its checks went. The runner owns it and
 // keeps it alive as long as the Lua state (declared before the state): the ctx userdata only

@@ -1,13 +1,18 @@
 // The ctx of a lesson (lua/lesson.hpp): ctx:expect by the contract of API.md "Lessons and
 // checks" — every case of issue 12 item 15, each with the verdict a teacher would give by
-// hand, never rigidlab's own output — ctx:expect_range, and the ctx's lifetime (item 1): a ctx
-// used after its lesson, after its __gc, or a vec3 dressed in its metatable is an error.
+// hand, never rigidlab's own output — ctx:expect_range, the ctx's lifetime (item 1): a ctx
+// used after its lesson, after its __gc, or a vec3 dressed in its metatable is an error; and
+// ctx:plot (issue 17 item 3): fitted to the lesson's width, checked as plot.lines checks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "bindings/lua_fixture.hpp"
 #include "lua/lesson.hpp"
+#include "lua/text_layout.hpp"
 
 namespace {
 
@@ -264,6 +269,85 @@ TEST_F(LessonContextTest, ValuesAreWrittenWithTheirKeys) {
   ASSERT_EQ(run(R"(ctx:show("t", {1, 2, x = 5, name = "a", [10] = true, sub = {vec3(1, 2, 3)}}))"),
             "");
   EXPECT_EQ(output.text, "  t = {1, 2, [10] = true, name = \"a\", sub = {(1, 2, 3)}, x = 5}\n");
+}
+
+}  // namespace
+
+namespace {
+
+// The widest line of `text` in code points.
+size_t widest_line(const std::string& text) {
+  size_t widest = 0, start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    widest = std::max(widest, rigidlab::lua::display_width(text.substr(start, end - start)));
+    start = end + 1;
+  }
+  return widest;
+}
+
+const char* const sine_plot = R"lua(
+  local t, y = {}, {}
+  for i = 0, 60 do t[#t + 1], y[#y + 1] = i / 10, math.sin(i / 10) end
+  ctx:plot{{x = t, y = y, label = "sin t"}, title = "A sine", xlabel = "t (s)", ylabel = "y",
+           height = 8}
+)lua";
+
+TEST_F(LessonContextTest, APlotFitsTheLessonsWidth) {
+  for (int columns : {40, 60, 80, 100}) {
+    SCOPED_TRACE(columns);
+    context.width = columns;
+    output.text.clear();
+    ASSERT_EQ(run(sine_plot), "");
+    EXPECT_EQ(widest_line(output.text), static_cast<size_t>(columns)) << output.text;
+    EXPECT_NE(output.text.find("\n    "), std::string::npos) << "indented like a table";
+    EXPECT_NE(output.text.find("A sine"), std::string::npos);
+    EXPECT_NE(output.text.find("sin t"), std::string::npos);
+  }
+}
+
+TEST_F(LessonContextTest, APlotKeepsTheWidthItAskedFor) {
+  context.width = 100;
+  ASSERT_EQ(run("ctx:plot{{y = {1, 2, 3}}, width = 20, height = 5}"), "");
+  EXPECT_LT(widest_line(output.text), 40u) << output.text;
+}
+
+TEST_F(LessonContextTest, APlotIsCheckedLikePlotLinesEvenWhenNothingIsShown) {
+  context.output = nullptr;  // check mode
+  EXPECT_EQ(run("ctx:plot{{y = {1, 0/0}}}"),
+            "test:1: bad argument #1 to 'ctx:plot' (series 1: y[2] is nan)");
+  EXPECT_EQ(run("ctx:plot{}"),
+            "test:1: bad argument #1 to 'ctx:plot' (at least one series {x = {...}, y = {...}} "
+            "expected)");
+  EXPECT_NE(run("ctx:plot({{y = {1}}}, 2)").find("bad argument #2 to 'ctx:plot'"),
+            std::string::npos);
+}
+
+// A page that records the charts it is given instead of drawing them.
+struct ChartCapture : rigidlab::lua::LessonOutput {
+  std::vector<rigidlab::present::Chart> charts;
+  std::vector<rigidlab::lua::PlotSize> sizes;
+  void write(const std::string&) override {}
+  void plot(const rigidlab::present::Chart& chart, const rigidlab::lua::PlotSize& size) override {
+    charts.push_back(chart);
+    sizes.push_back(size);
+  }
+};
+
+TEST_F(LessonContextTest, APlotReachesThePageAsAChart) {
+  ChartCapture page;
+  context.output = &page;
+  context.width = 72;
+  ASSERT_EQ(run(sine_plot), "");
+  ASSERT_EQ(page.charts.size(), 1u);
+  EXPECT_EQ(page.charts[0].title, "A sine");
+  ASSERT_EQ(page.charts[0].series.size(), 1u);
+  EXPECT_EQ(page.charts[0].series[0].x.size(), 61u);
+  EXPECT_DOUBLE_EQ(page.charts[0].series[0].y[10], std::sin(1.0));
+  EXPECT_EQ(page.sizes[0].width, 0) << "no width asked: fit";
+  EXPECT_EQ(page.sizes[0].height, 8);
+  EXPECT_EQ(page.sizes[0].columns, 72);
 }
 
 }  // namespace
