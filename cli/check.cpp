@@ -164,9 +164,12 @@ bool check_one(const LessonFile& file, const Limits& limits) {
   bool done = false;
   std::istringstream lines(outcome.report);
   for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("id ", 0) == 0) result.id = line.substr(3);
-    else if (line.rfind("tally ", 0) == 0) std::istringstream(line.substr(6)) >> result.passed >> result.failed;
-    else if (line == "done") done = true;
+    if (line.rfind("id ", 0) == 0)
+      result.id = line.substr(3);
+    else if (line.rfind("tally ", 0) == 0)
+      std::istringstream(line.substr(6)) >> result.passed >> result.failed;
+    else if (line == "done")
+      done = true;
   }
   if (done && outcome.end == ChildOutcome::End::exited && outcome.status <= 1)
     return outcome.status == 0;  // the child printed its own result

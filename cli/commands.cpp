@@ -25,10 +25,13 @@ bool is_regular_file(const char* path) {
 
 const Subcommand subcommands[] = {
     {"lessons", "", "list the lessons: id, title, source", lessons_command},
-    {"lesson", "[ID|FILE] [LIMITS]", "step through a lesson (no ID: a menu of them)",
+    {"lesson", "[ID|FILE] [OPTIONS]",
+     "step through a lesson (no ID: a menu); OPTIONS are LIMITS, --from STEP and "
+     "--export FILE.md (its transcript)",
      lesson_command},
     {"check", "[LIMITS] [ID|FILE ...]",
-     "run the checks of lessons (default: all) under limits",
+     "run the checks of lessons (default: all; a FILE that is a folder: its lessons) under "
+     "limits",
      check_command},
     {nullptr, nullptr, nullptr, nullptr},
 };

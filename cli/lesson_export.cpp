@@ -57,9 +57,12 @@ void MarkdownPage::prose(const std::string& text) {
     const bool keep = !line.empty() && line[0] == ' ';
     if (keep != kept) text_ += keep ? "\n```text\n" : "```\n\n";
     kept = keep;
-    if (keep) text_ += line + "\n";
-    else if (line.find_first_not_of(" \t") == std::string::npos) text_ += "\n";
-    else text_ += escaped(line) + "\n";
+    if (keep)
+      text_ += line + "\n";
+    else if (line.find_first_not_of(" \t") == std::string::npos)
+      text_ += "\n";
+    else
+      text_ += escaped(line) + "\n";
   }
   if (kept) text_ += "```\n";
   text_ += "\n";
@@ -74,8 +77,8 @@ void MarkdownPage::write(const std::string& lines) {
 void MarkdownPage::plot(const present::Chart& chart, const lua::PlotSize&) {
   close_block();
   ++charts_;
-  const fs::path svg = markdown_.parent_path() / (markdown_.stem().string() + "-" +
-                                                  std::to_string(charts_) + ".svg");
+  const fs::path svg = markdown_.parent_path() /
+                       (markdown_.stem().string() + "-" + std::to_string(charts_) + ".svg");
   std::string error;
   if (make_folder(svg, error)) {
     try {
@@ -90,11 +93,11 @@ void MarkdownPage::plot(const present::Chart& chart, const lua::PlotSize&) {
   text_ += "\n![" + escaped(title) + "](" + svg.filename().string() + ")\n\n";
 }
 
-void MarkdownPage::heading(const lua::LessonSpec& spec, const std::string& origin) {
+// The heading of a handout: where the lesson's file lies on the teacher's machine is left out.
+void MarkdownPage::heading(const lua::LessonSpec& spec, const std::string&) {
   close_block();
   text_ += "# " + escaped(spec.id) + " — " + escaped(spec.title) + "\n\n";
   text_ += "*Source:* " + escaped(spec.source) + "\n";
-  if (!origin.empty()) text_ += "\n*From:* " + escaped(origin) + "\n";
   if (spec.has_tolerance)
     text_ += "\n*Tolerance:* " + lua::describe_tolerance(spec.tolerance) + " — " +
              escaped(spec.tolerance.reason) + "\n";
@@ -103,8 +106,8 @@ void MarkdownPage::heading(const lua::LessonSpec& spec, const std::string& origi
 void MarkdownPage::step(const lua::LessonSpec& spec, int number) {
   close_block();
   const lua::LessonStep& step = spec.steps[static_cast<size_t>(number) - 1];
-  text_ += "\n## Step " + std::to_string(number) + "/" + std::to_string(spec.steps.size()) +
-           ": " + escaped(step.title) + "\n\n";
+  text_ += "\n## Step " + std::to_string(number) + "/" + std::to_string(spec.steps.size()) + ": " +
+           escaped(step.title) + "\n\n";
   prose(step.text);
   if (!step.formula.empty()) text_ += "```text\n" + step.formula + "\n```\n\n";
 }

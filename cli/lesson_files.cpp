@@ -7,8 +7,8 @@
 
 #include "cli/interrupt.hpp"
 #include "lua/rigidlab.hpp"
-#include "lua/text_only.hpp"
 #include "lua/text_layout.hpp"
+#include "lua/text_only.hpp"
 
 namespace rigidlab::cli {
 namespace fs = std::filesystem;
@@ -99,9 +99,10 @@ LessonCatalog read_catalog() {
     for (std::string entry; std::getline(entries, entry, ':');) {
       if (entry.empty()) continue;
       const fs::path folder = canonical_folder(entry);
-      const bool repeated = std::any_of(
-          catalog.folders.begin(), catalog.folders.end(),
-          [&](const LessonFolder& f) { return !folder.empty() && canonical_folder(f.path) == folder; });
+      const bool repeated =
+          std::any_of(catalog.folders.begin(), catalog.folders.end(), [&](const LessonFolder& f) {
+            return !folder.empty() && canonical_folder(f.path) == folder;
+          });
       if (!repeated) catalog.folders.push_back({entry, false});
     }
   }
@@ -140,11 +141,11 @@ std::string no_lesson_message(const std::string& name) {
   return "no lesson '" + shown_name(name) + "' (rigidlab lessons lists them)";
 }
 
-bool resolve_lesson(const LessonCatalog& catalog, const std::string& id_or_file,
-                    LessonFile& lesson, std::string& error) {
-  const bool is_file_name = id_or_file.find('/') != std::string::npos ||
-                            (id_or_file.size() > 4 &&
-                             id_or_file.compare(id_or_file.size() - 4, 4, ".lua") == 0);
+bool resolve_lesson(const LessonCatalog& catalog, const std::string& id_or_file, LessonFile& lesson,
+                    std::string& error) {
+  const bool is_file_name =
+      id_or_file.find('/') != std::string::npos ||
+      (id_or_file.size() > 4 && id_or_file.compare(id_or_file.size() - 4, 4, ".lua") == 0);
   if (!is_file_name) {  // an id: the catalog has it or nothing has
     if (const LessonFile* found = catalog.find(id_or_file)) {
       for (const std::string& problem : catalog.problems)
@@ -196,8 +197,8 @@ bool load_lesson(lua_State* L, const LessonFile& file, LoadedLesson& lesson, std
   else if (!lua::read_lesson(L, -1, lesson.spec, problem))
     problem = problem.empty() ? "not a lesson" : problem;
   else if (file.named_by_id && lesson.spec.id != file.id)
-    problem = "its id is '" + lesson.spec.id + "', but a lesson's file is named after its id: " +
-              lesson.spec.id + ".lua";
+    problem = "its id is '" + lesson.spec.id +
+              "', but a lesson's file is named after its id: " + lesson.spec.id + ".lua";
   if (!problem.empty()) {
     error = path.string() + ": the file must return lesson{...} (" + problem + ")";
     lua_settop(L, handler - 1);

@@ -31,9 +31,9 @@ struct LessonFolder {
 
 struct LessonFile {
   std::filesystem::path path;
-  std::string id;        // the file's name without .lua
-  int folder = -1;       // index in LessonCatalog::folders; -1: not in a lesson folder
-  bool trusted = false;  // in a lesson folder: runs without the sandbox
+  std::string id;            // the file's name without .lua
+  int folder = -1;           // index in LessonCatalog::folders; -1: not in a lesson folder
+  bool trusted = false;      // in a lesson folder: runs without the sandbox
   bool named_by_id = false;  // found in a folder: its lesson's id must be `id`
 };
 
@@ -62,8 +62,8 @@ bool folder_lessons(const LessonCatalog& catalog, const std::filesystem::path& d
 // An argument naming a lesson: a file (a name with '/' or ending in .lua) or an id of the
 // catalog. False, with the message in `error`, when there is no such lesson, it cannot be
 // read, or its id is defined twice.
-bool resolve_lesson(const LessonCatalog& catalog, const std::string& id_or_file,
-                    LessonFile& lesson, std::string& error);
+bool resolve_lesson(const LessonCatalog& catalog, const std::string& id_or_file, LessonFile& lesson,
+                    std::string& error);
 // "no lesson 'NAME'" with NAME cut to a readable length.
 std::string no_lesson_message(const std::string& name);
 

@@ -57,7 +57,8 @@ std::vector<std::string> table_rows(const std::vector<LessonInfo>& infos, bool n
   for (const auto& info : infos) {
     char prefix[16] = "";
     if (numbered) std::snprintf(prefix, sizeof prefix, "%3d  ", ++number);
-    std::string row = prefix + info.file.id + std::string(id_width - display_width(info.file.id), ' ');
+    std::string row =
+        prefix + info.file.id + std::string(id_width - display_width(info.file.id), ' ');
     if (!info.error.empty()) {
       rows.push_back(row + "  (cannot load: " + info.error + ")");
       continue;
@@ -92,7 +93,8 @@ void print_compact(const std::vector<LessonInfo>& infos, size_t first, size_t co
       std::snprintf(number, sizeof number, "%3zu  ", first + i + 1);
       std::string text = number + info.file.id + (info.error.empty() ? "" : " (!)");
       if (column + 1 < columns && (column + 1) * rows + row < count)
-        text += std::string(cell + 2 > display_width(text) ? cell + 2 - display_width(text) : 1, ' ');
+        text +=
+            std::string(cell + 2 > display_width(text) ? cell + 2 - display_width(text) : 1, ' ');
       line += text;
     }
     std::printf("%s\n", line.c_str());
@@ -106,8 +108,8 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
   for (size_t i = 1; i <= a.size(); ++i)
     for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
-                          d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
         d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
@@ -181,8 +183,7 @@ const LessonInfo* menu_choice(const std::vector<LessonInfo>& infos, const std::s
 std::string no_such_choice(const std::vector<LessonInfo>& infos, const std::string& answer) {
   const std::string shown = lua::truncate_to_width(answer, 60);
   if (!answer.empty() && answer.find_first_not_of("0123456789") == std::string::npos)
-    return "no lesson " + shown + ": the lessons are numbered 1 to " +
-           std::to_string(infos.size());
+    return "no lesson " + shown + ": the lessons are numbered 1 to " + std::to_string(infos.size());
   // The closest ids: a few edits away (a typo), or holding the answer (a part of the id).
   std::vector<std::pair<size_t, const LessonInfo*>> close;
   if (answer.size() <= 100) {
@@ -198,11 +199,14 @@ std::string no_such_choice(const std::vector<LessonInfo>& infos, const std::stri
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   if (close.size() > 3) close.resize(3);
   std::string message = "no lesson '" + shown + "'";
-  if (close.empty()) return message + " (a number from 1 to " + std::to_string(infos.size()) +
-                            ", or an id)";
+  if (close.empty())
+    return message + " (a number from 1 to " + std::to_string(infos.size()) + ", or an id)";
   message += "; did you mean ";
   for (size_t i = 0; i < close.size(); ++i)
-    message += (i == 0 ? "" : i + 1 == close.size() ? " or " : ", ") + ("'" + close[i].second->file.id + "'");
+    message += (i == 0                  ? ""
+                : i + 1 == close.size() ? " or "
+                                        : ", ") +
+               ("'" + close[i].second->file.id + "'");
   return message + "?";
 }
 

@@ -51,8 +51,9 @@ void TerminalPage::heading(const lua::LessonSpec& spec, const std::string& origi
   }
   if (!origin.empty()) text += lua::fit_words_after("  from:   ", origin, width_);
   if (spec.has_tolerance)
-    text += lua::fit_words_after("  tolerance: ", lua::describe_tolerance(spec.tolerance) + " — " +
-                                                      spec.tolerance.reason, width_);
+    text += lua::fit_words_after(
+        "  tolerance: ", lua::describe_tolerance(spec.tolerance) + " — " + spec.tolerance.reason,
+        width_);
   write(text);
 }
 

@@ -138,7 +138,8 @@ std::string upvalue_line(lua_State* L, const char* name, int index) {
                                              : exact_number(lua_tonumber(L, index)));
   if (lua_type(L, index) == LUA_TSTRING || lua_type(L, index) == LUA_TBOOLEAN)
     return assign + lua::format_value(L, index, "", true);
-  if (const Vec3* v = lua::test_vec3(L, index)) return assign + "vec3(" + exact_list(v->data(), 3) + ")";
+  if (const Vec3* v = lua::test_vec3(L, index))
+    return assign + "vec3(" + exact_list(v->data(), 3) + ")";
   if (const Quat* q = lua::test_quat(L, index)) {
     const double wxyz[] = {q->w(), q->x(), q->y(), q->z()};
     return assign + "quat(" + exact_list(wxyz, 4) + ")";
@@ -170,7 +171,8 @@ std::vector<std::string> function_lines(const fs::path& path, int first, int las
     if (++number >= first) lines.push_back(line);
   if (lines.empty()) return lines;
   if (const size_t at = lines.front().find("function"); at != std::string::npos)
-    lines.front() = std::string(lines.front().find_first_not_of(' '), ' ') + lines.front().substr(at);
+    lines.front() =
+        std::string(lines.front().find_first_not_of(' '), ' ') + lines.front().substr(at);
   if (const size_t at = lines.back().rfind("end"); at != std::string::npos)
     lines.back().resize(at + 3);
   size_t indent = std::string::npos;  // the code's own indentation, removed
@@ -193,7 +195,8 @@ struct PasteLines {
 std::string function_text(const fs::path& path, const std::string& name, const lua_Debug& ar) {
   std::vector<std::string> lines = function_lines(path, ar.linedefined, ar.lastlinedefined);
   if (lines.empty()) return "-- " + name + ": (the file cannot be read)\n";
-  if (lines.front().rfind("function " + name + "(", 0) != 0) lines.front() = name + " = " + lines.front();
+  if (lines.front().rfind("function " + name + "(", 0) != 0)
+    lines.front() = name + " = " + lines.front();
   std::string text;
   for (const std::string& line : lines) text += line + "\n";
   return text;
@@ -308,10 +311,10 @@ void end_screen(LessonRun& run) {
   const LessonFile* next = run.catalog->next(*run.file);
   if (next != nullptr && run.file->folder >= 0) {
     const LessonInfo info = read_lesson_info(*next);
-    run.page->write(lua::fit_words_after("\nNext: ", next->id + (info.error.empty() ? " — " + info.title : ""),
-                                        static_cast<size_t>(run.page->width())));
-  }
-  else if (run.file->folder >= 0)
+    const std::string title = info.error.empty() ? " — " + info.title : "";
+    run.page->write(lua::fit_words_after("\nNext: ", next->id + title,
+                                         static_cast<size_t>(run.page->width())));
+  } else if (run.file->folder >= 0)
     run.page->note("\nThat was the last lesson of the tour.");
 }
 
@@ -320,12 +323,12 @@ std::string prompt(const LessonRun& run, bool at_end) {
   if (at_end)
     return has_next ? "[Enter] next lesson   m menu   q quit > " : "[Enter] quit   m menu > ";
   return run.page->width() >= 60 ? "[Enter] next step   b back   c code   r again   q quit > "
-                                : "[Enter] next   b back   q quit   ? keys > ";
+                                 : "[Enter] next   b back   q quit   ? keys > ";
 }
 
 // Steps through the lesson with the student: a key after each step (see key_help).
-void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx,
-                    int number, LessonClock& clock) {
+void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx, int number,
+                    LessonClock& clock) {
   const int count = static_cast<int>(lesson.spec.steps.size());
   bool show_end = true;
   for (;;) {
@@ -350,12 +353,13 @@ void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, in
     }
     if (letter == 'c') {
       show_code(L, run, lesson, number);
-    } else if (run.stopped && (letter == 'b' || letter == 'r' || key.kind == KeyPress::Kind::back)) {
+    } else if (run.stopped &&
+               (letter == 'b' || letter == 'r' || key.kind == KeyPress::Kind::back)) {
       run.page->note("  (the lesson was stopped by its limits: no step runs again)");
     } else if (key.kind == KeyPress::Kind::enter) {
       if (at_end) {
-        run.next = run.file->folder >= 0 && run.catalog->next(*run.file) ? Next::next_lesson
-                                                                          : Next::quit;
+        run.next =
+            run.file->folder >= 0 && run.catalog->next(*run.file) ? Next::next_lesson : Next::quit;
         return;
       }
       show_step(L, run, lesson, ctx, ++number, clock);
@@ -393,8 +397,8 @@ int present_protected(lua_State* L) {
   }
   const int count = static_cast<int>(lesson.spec.steps.size());
   if (run.options->from_step > count) {
-    std::fprintf(stderr, "rigidlab: --from %d: lesson '%s' has %d step%s\n",
-                 run.options->from_step, lesson.spec.id.c_str(), count, count == 1 ? "" : "s");
+    std::fprintf(stderr, "rigidlab: --from %d: lesson '%s' has %d step%s\n", run.options->from_step,
+                 lesson.spec.id.c_str(), count, count == 1 ? "" : "s");
     run.usage_error = true;
     return 0;
   }
@@ -405,9 +409,11 @@ int present_protected(lua_State* L) {
   run.context.tolerance = lesson.spec.tolerance;
   lua::push_lesson_context(L, run.context);
   const int ctx = lua_gettop(L);
-  const LessonFolder* folder =
-      run.file->folder >= 0 ? &run.catalog->folders[static_cast<size_t>(run.file->folder)] : nullptr;
-  run.page->heading(lesson.spec, folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
+  const LessonFolder* folder = run.file->folder >= 0
+                                   ? &run.catalog->folders[static_cast<size_t>(run.file->folder)]
+                                   : nullptr;
+  run.page->heading(lesson.spec,
+                    folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
   int number = run.options->from_step;
   show_step(L, run, lesson, ctx, number, clock);
   if (run.interactive) {
@@ -567,10 +573,11 @@ int lesson_command(const std::vector<std::string>& arguments) {
       limits_given = true;
     } else if (arguments[i] == "--from" || arguments[i].rfind("--from=", 0) == 0) {
       const bool inline_value = arguments[i].size() > 6;
-      if (!inline_value && i + 1 == arguments.size()) return usage_error("'--from' needs a step number");
+      if (!inline_value && i + 1 == arguments.size())
+        return usage_error("'--from' needs a step number");
       const std::string value = inline_value ? arguments[i].substr(7) : arguments[++i];
-      if (value.empty() || value.size() > 6 || value.find_first_not_of("0123456789") != std::string::npos ||
-          std::stoi(value) < 1)
+      if (value.empty() || value.size() > 6 ||
+          value.find_first_not_of("0123456789") != std::string::npos || std::stoi(value) < 1)
         return usage_error("'--from' needs a step number >= 1, got '" +
                            lua::truncate_to_width(value, 60) + "'");
       options.from_step = std::stoi(value);
@@ -579,8 +586,7 @@ int lesson_command(const std::vector<std::string>& arguments) {
       if (!inline_value && i + 1 == arguments.size())
         return usage_error("'--export' needs a file name (FILE.md)");
       options.export_path = inline_value ? arguments[i].substr(9) : arguments[++i];
-      if (options.export_path.empty())
-        return usage_error("'--export' needs a file name (FILE.md)");
+      if (options.export_path.empty()) return usage_error("'--export' needs a file name (FILE.md)");
     } else if (arguments[i] == "--") {
       names.insert(names.end(), arguments.begin() + static_cast<std::ptrdiff_t>(i) + 1,
                    arguments.end());

@@ -110,7 +110,8 @@ std::string unknown_field(lua_State* L, int table, const char* const* allowed) {
       known = lua_type(L, -1) == LUA_TSTRING && std::strcmp(*a, lua_tostring(L, -1)) == 0;
     if (known) continue;
     std::string message = std::string("unknown field '") + push_key_name(L, -1) + "' (fields are: ";
-    for (const char* const* a = allowed; *a; ++a) message += (a == allowed ? "" : ", ") + std::string(*a);
+    for (const char* const* a = allowed; *a; ++a)
+      message += (a == allowed ? "" : ", ") + std::string(*a);
     lua_pop(L, 2);
     return message + ")";
   }
@@ -141,9 +142,10 @@ bool read_tolerance_table(lua_State* L, int index, Tolerance& tolerance, std::st
   }
   lua_pushliteral(L, "reason");
   const int type = lua_rawget(L, index);
-  if (type == LUA_TSTRING) tolerance.reason = lua_tostring(L, -1);
-  else if (type != LUA_TNIL) error = std::string("field 'reason' must be a string, got ") +
-                                     value_type_name(L, -1);
+  if (type == LUA_TSTRING)
+    tolerance.reason = lua_tostring(L, -1);
+  else if (type != LUA_TNIL)
+    error = std::string("field 'reason' must be a string, got ") + value_type_name(L, -1);
   lua_pop(L, 1);
   return error.empty();
 }
@@ -153,7 +155,8 @@ bool read_tolerance_table(lua_State* L, int index, Tolerance& tolerance, std::st
 // lesson's.
 Tolerance check_tolerance(lua_State* L, int arg, const LessonContext& context) {
   if (lua_isnoneornil(L, arg)) return context.tolerance;
-  if (lua_type(L, arg) == LUA_TNUMBER) return Tolerance{0.0, check_nonnegative(L, arg, "tolerance"), ""};
+  if (lua_type(L, arg) == LUA_TNUMBER)
+    return Tolerance{0.0, check_nonnegative(L, arg, "tolerance"), ""};
   if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, "number or {abs =, rel =, reason =}");
   Tolerance tolerance;
   std::string error;
@@ -174,8 +177,10 @@ bool report_check(lua_State* L, LessonContext& context, const std::string& label
   const bool ok = problem.empty();
   const std::string mark = ok ? "  ✓ " : "  ✗ ";
   std::string detail;
-  if (!ok) detail = " (" + problem + (note.empty() ? "" : "; " + note) + ")";
-  else if (!note.empty()) detail = " (" + note + ")";
+  if (!ok)
+    detail = " (" + problem + (note.empty() ? "" : "; " + note) + ")";
+  else if (!note.empty())
+    detail = " (" + note + ")";
   const std::string one_line = label + ": got " + got + ", want " + want + detail;
   if (ok) {
     ++context.passed;
@@ -213,9 +218,9 @@ int context_expect(lua_State* L) {
   check_no_extra_args(L, 5);
   const Tolerance tolerance = check_tolerance(L, 5, context);
   const std::string problem = compare_values(L, 3, 4, tolerance);
-  const bool ok = report_check(L, context, label, format_value(L, 3, "", true),
-                               format_value(L, 4, "", true), problem,
-                               tolerance_note(tolerance, !lua_isnoneornil(L, 5), problem));
+  const bool ok =
+      report_check(L, context, label, format_value(L, 3, "", true), format_value(L, 4, "", true),
+                   problem, tolerance_note(tolerance, !lua_isnoneornil(L, 5), problem));
   lua_pushboolean(L, ok);
   return 1;
 }
@@ -243,17 +248,23 @@ int context_expect_range(lua_State* L) {
     arg_error(L, 5, "high must be >= low, got low %s and high %s", lesson_number(low).c_str(),
               lesson_number(high).c_str());
   std::string want;
-  if (has_low && has_high) want = "in [" + lesson_number(low) + ", " + lesson_number(high) + "]";
-  else if (has_low) want = "≥ " + lesson_number(low);
-  else want = "≤ " + lesson_number(high);
+  if (has_low && has_high)
+    want = "in [" + lesson_number(low) + ", " + lesson_number(high) + "]";
+  else if (has_low)
+    want = "≥ " + lesson_number(low);
+  else
+    want = "≤ " + lesson_number(high);
   std::string problem;
   if (lua_type(L, 3) != LUA_TNUMBER) {
     problem = "got " + a_type_name(L, 3) + ", want a number";
   } else {
     const double got = lua_tonumber(L, 3);
-    if (std::isnan(got)) problem = "got nan";
-    else if (has_low && got < low) problem = "below the low bound by " + format_number(low - got);
-    else if (has_high && got > high) problem = "above the high bound by " + format_number(got - high);
+    if (std::isnan(got))
+      problem = "got nan";
+    else if (has_low && got < low)
+      problem = "below the low bound by " + format_number(low - got, 4);
+    else if (has_high && got > high)
+      problem = "above the high bound by " + format_number(got - high, 4);
   }
   const bool ok = report_check(L, context, label, format_value(L, 3, "", true), want, problem, "");
   lua_pushboolean(L, ok);
@@ -377,9 +388,11 @@ int context_gc(lua_State* L) {
 int context_tostring(lua_State* L) {
   ContextBox* box = test_tagged<ContextBox>(L, 1, lesson_context_tag);
   if (box == nullptr) type_error(L, 1, "lesson context");
-  if (*box == nullptr) lua_pushliteral(L, "lesson context (garbage-collected)");
-  else lua_pushfstring(L, "lesson context (%d passed, %d failed%s)", (*box)->passed,
-                       (*box)->failed, (*box)->ended ? "; its lesson has ended" : "");
+  if (*box == nullptr)
+    lua_pushliteral(L, "lesson context (garbage-collected)");
+  else
+    lua_pushfstring(L, "lesson context (%d passed, %d failed%s)", (*box)->passed, (*box)->failed,
+                    (*box)->ended ? "; its lesson has ended" : "");
   return 1;
 }
 
@@ -470,8 +483,9 @@ bool read_lesson_tolerance(lua_State* L, int lesson, LessonSpec& spec, std::stri
   const int type = raw_field(L, lesson, "tolerance");
   if (type == LUA_TTABLE) {
     if (read_tolerance_table(L, -1, spec.tolerance, error) && spec.tolerance.reason.empty())
-      error = "needs a reason, printed with the lesson: tolerance = {rel = 1e-6, reason = "
-              "\"the document gives 7 digits\"}";
+      error =
+          "needs a reason, printed with the lesson: tolerance = {rel = 1e-6, reason = "
+          "\"the document gives 7 digits\"}";
     spec.has_tolerance = true;
   } else if (type != LUA_TNIL) {
     error = std::string("must be a table {rel =, abs =, reason =}, got ") + value_type_name(L, -1);
@@ -614,8 +628,8 @@ bool read_lesson(lua_State* L, int index, LessonSpec& spec, std::string& error) 
   static const char* const allowed[] = {"id", "title", "source", "steps", "tolerance", nullptr};
   error = unknown_field(L, index, allowed);
   if (error.empty()) read_text(L, index, "id", true, true, spec.id, error);
-  if (error.empty() && spec.id.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") !=
-                           std::string::npos)
+  if (error.empty() &&
+      spec.id.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos)
     error = "field 'id' may hold only a-z, 0-9 and '-', got '" + spec.id + "'";
   if (error.empty()) read_text(L, index, "title", true, true, spec.title, error);
   if (error.empty()) read_text(L, index, "source", true, true, spec.source, error);

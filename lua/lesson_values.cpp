@@ -18,9 +18,9 @@
 namespace rigidlab::lua {
 namespace {
 
-constexpr int max_depth = 64;         // of a comparison
-constexpr int max_shown_depth = 3;    // of a table as written
-constexpr int max_shown_entries = 16; // per table as written
+constexpr int max_depth = 64;          // of a comparison
+constexpr int max_shown_depth = 3;     // of a table as written
+constexpr int max_shown_entries = 16;  // per table as written
 
 // ---- keys in a fixed order -------------------------------------------------------------------
 
@@ -104,9 +104,10 @@ bool is_identifier(const char* text, size_t length) {
   if (length == 0 || std::isdigit(static_cast<unsigned char>(text[0]))) return false;
   for (size_t i = 0; i < length; ++i)
     if (!(std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) return false;
-  static const char* const reserved[] = {
-      "and", "break", "do", "else", "elseif", "end", "false", "for", "function", "goto", "if",
-      "in", "local", "nil", "not", "or", "repeat", "return", "then", "true", "until", "while"};
+  static const char* const reserved[] = {"and",   "break", "do",       "else", "elseif", "end",
+                                         "false", "for",   "function", "goto", "if",     "in",
+                                         "local", "nil",   "not",      "or",   "repeat", "return",
+                                         "then",  "true",  "until",    "while"};
   for (const char* word : reserved)
     if (std::strlen(word) == length && std::memcmp(word, text, length) == 0) return false;
   return true;
@@ -145,8 +146,10 @@ std::string path_step(lua_State* L, int key, bool first) {
     return "[" + quoted(text, length) + "]";
   }
   if (lua_type(L, key) == LUA_TNUMBER)
-    return "[" + (lua_isinteger(L, key) ? std::to_string(lua_tointeger(L, key))
-                                         : lesson_number(lua_tonumber(L, key))) + "]";
+    return "[" +
+           (lua_isinteger(L, key) ? std::to_string(lua_tointeger(L, key))
+                                  : lesson_number(lua_tonumber(L, key))) +
+           "]";
   if (lua_type(L, key) == LUA_TBOOLEAN) return lua_toboolean(L, key) ? "[true]" : "[false]";
   return std::string("[") + value_type_name(L, key) + "]";
 }
@@ -251,25 +254,24 @@ class Comparison {
   bool close(double got, double want) const {
     if (got == want) return true;
     if (!std::isfinite(got) || !std::isfinite(want)) return false;  // inf: no bound holds it
-    const double bound = std::max(tolerance_.absolute,
-                                  tolerance_.relative * std::max(1.0, std::fabs(want)));
+    const double bound =
+        std::max(tolerance_.absolute, tolerance_.relative * std::max(1.0, std::fabs(want)));
     return std::fabs(got - want) <= bound;
   }
 
   std::string off_by(double got, double want) const {
     if (std::isnan(got)) return "got nan";
     if (std::isnan(want)) return "want nan: nan equals nothing";
-    return "off by " + format_number(std::fabs(got - want));
+    return "off by " + format_number(std::fabs(got - want), 4);  // 4 digits tell how far
   }
 
-  std::string components(const double* got, const double* want, int n,
-                         const char* const* names, int columns) const {
+  std::string components(const double* got, const double* want, int n, const char* const* names,
+                         int columns) const {
     for (int i = 0; i < n; ++i) {
       if (close(got[i], want[i])) continue;
-      std::string which = names != nullptr
-                              ? std::string("component ") + names[i]
-                              : "entry (" + std::to_string(i / columns + 1) + ", " +
-                                    std::to_string(i % columns + 1) + ")";
+      std::string which = names != nullptr ? std::string("component ") + names[i]
+                                           : "entry (" + std::to_string(i / columns + 1) + ", " +
+                                                 std::to_string(i % columns + 1) + ")";
       return which + " " + off_by(got[i], want[i]);
     }
     return "";

@@ -117,7 +117,7 @@ TEST_F(LessonContextTest, NumbersInfinitiesAndNan) {
   verdict(R"(ctx:expect("x", 2, 2.0))", true);
   verdict(R"(ctx:expect("x", -0.0, 0))", true);
   verdict(R"(ctx:expect("x", math.maxinteger, math.maxinteger))", true);
-  verdict(R"(ctx:expect("x", 1 + 1e-10, 1))", true);   // within the default 1e-9
+  verdict(R"(ctx:expect("x", 1 + 1e-10, 1))", true);  // within the default 1e-9
   verdict(R"(ctx:expect("x", 1 + 1e-8, 1))", false, "tolerance rel 1e-09");
   verdict(R"(ctx:expect("x", 1e6 + 1e-4, 1e6))", true);  // relative to |want|
   verdict(R"(ctx:expect("x", 1.05, 1, {abs = 0.1}))", true);
@@ -130,13 +130,11 @@ TEST_F(LessonContextTest, MathTypesComponentWise) {
   verdict(R"(ctx:expect("v", vec3(1, 2, 3), vec3(1, 2, 3)))", true);
   verdict(R"(ctx:expect("v", vec3(1, 2, 3), vec3(1, 2, 4)))", false, "component z off by 1");
   verdict(R"(ctx:expect("v", vec3(1, 2, 3), {1, 2, 3}))", false, "got a vec3, want a table");
-  verdict(R"(ctx:expect("q", quat(1, 0, 0, 0), quat(0, 1, 0, 0)))", false,
-          "component w off by 1");
+  verdict(R"(ctx:expect("q", quat(1, 0, 0, 0), quat(0, 1, 0, 0)))", false, "component w off by 1");
   verdict(R"(ctx:expect("m", mat3.identity(), mat3.identity()))", true);
   verdict(R"(ctx:expect("m", mat3.identity(), mat3.diag(1, 1, 2)))", false,
           "entry (3, 3) off by 1");
-  verdict(R"(ctx:expect("m", mat3.identity(), vec3(1, 1, 1)))", false,
-          "got a mat3, want a vec3");
+  verdict(R"(ctx:expect("m", mat3.identity(), vec3(1, 1, 1)))", false, "got a mat3, want a vec3");
 }
 
 TEST_F(LessonContextTest, MetamethodsCannotMakeDifferentValuesAgree) {
@@ -152,25 +150,31 @@ TEST_F(LessonContextTest, MetamethodsCannotMakeDifferentValuesAgree) {
 
 TEST_F(LessonContextTest, CyclesAndSharedTables) {
   verdict(R"((function() local a, b = {}, {} a.self, b.self = a, b
-            return ctx:expect("t", a, b) end)())", true);
+            return ctx:expect("t", a, b) end)())",
+          true);
   verdict(R"((function() local a, b = {x = 1}, {x = 2} a.self, b.self = a, b
-            return ctx:expect("t", a, b) end)())", false, "key x: off by 1");
+            return ctx:expect("t", a, b) end)())",
+          false, "key x: off by 1");
   // 2^40 paths through shared tables: each pair is compared once
   verdict(R"((function() local t, u = {1}, {1}
             for i = 1, 40 do t, u = {t, t}, {u, u} end
-            return ctx:expect("t", t, u) end)())", true);
+            return ctx:expect("t", t, u) end)())",
+          true);
   verdict(R"((function() local t, u = {}, {}
             for i = 1, 100 do t, u = {t}, {u} end
-            return ctx:expect("t", t, u) end)())", false, "nested deeper than 64 levels");
+            return ctx:expect("t", t, u) end)())",
+          false, "nested deeper than 64 levels");
 }
 
 TEST_F(LessonContextTest, OtherValuesOnlyEqualThemselves) {
   verdict(R"(ctx:expect("f", print, print))", true);
   verdict(R"(ctx:expect("f", print, error))", false, "got another function");
   verdict(R"((function() local b = body{mass = 1, inertia = mat3.identity()}
-            return ctx:expect("b", b, b) end)())", true);
+            return ctx:expect("b", b, b) end)())",
+          true);
   verdict(R"(ctx:expect("b", body{mass = 1, inertia = mat3.identity()},
-                        body{mass = 1, inertia = mat3.identity()}))", false, "got another body");
+                        body{mass = 1, inertia = mat3.identity()}))",
+          false, "got another body");
 }
 
 TEST_F(LessonContextTest, TheFailureIsRecordedWithItsReason) {
@@ -234,7 +238,8 @@ TEST_F(LessonContextTest, AFinalisedCtxIsAnErrorAndItsGcCanRunTwice) {
     local gc = debug.getmetatable(ctx).__gc
     gc(ctx)
     gc(ctx)
-  )"), "");
+  )"),
+            "");
   EXPECT_EQ(run(R"(ctx:expect("x", 1, 2))"),
             "test:1: calling 'ctx:expect' on bad self (the lesson context was garbage-collected "
             "(it is used from a finaliser))");
@@ -253,14 +258,16 @@ TEST_F(LessonContextTest, AVec3InTheCtxMetatableIsNoCtx) {
     mt.__gc(v)
     mt.__gc(v)
     v:expect("x", 1, 1)
-  )"), "test:7: calling 'ctx:expect' on bad self (lesson context expected, got vec3)");
+  )"),
+            "test:7: calling 'ctx:expect' on bad self (lesson context expected, got vec3)");
   EXPECT_EQ(run(R"(
     local mt = debug.getmetatable(ctx)
     local f = io.tmpfile()
     debug.setmetatable(f, mt)
     mt.__gc(f)
     return f:show("x", 1)
-  )"), "test:6: calling 'ctx:show' on bad self (lesson context expected, got userdata)");
+  )"),
+            "test:6: calling 'ctx:show' on bad self (lesson context expected, got userdata)");
   EXPECT_EQ(run(R"(ctx:expect("still a ctx", 1, 1))"), "");
   EXPECT_EQ(context.passed, 1);
 }
