@@ -7,6 +7,7 @@
 #include "cli/check.hpp"
 #include "cli/lessons.hpp"
 #include "cli/usage.hpp"
+#include "cli/view.hpp"
 
 namespace rigidlab::cli {
 namespace {
@@ -33,6 +34,8 @@ const Subcommand subcommands[] = {
      "run the checks of lessons (default: all; a FILE that is a folder: its lessons) under "
      "limits",
      check_command},
+    {"view", "FILE.lua [ARG ...]", "show the world the script returns, live in the terminal",
+     view_command},
     {nullptr, nullptr, nullptr, nullptr},
 };
 

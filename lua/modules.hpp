@@ -24,5 +24,6 @@ void open_articulation(lua_State* L, int lib);
 void open_render(lua_State* L, int lib);  // after open_world: world methods
 void open_record(lua_State* L, int lib);  // after open_world: world methods
 void open_export_html(lua_State* L, int lib);  // after open_world: world methods
+void open_view(lua_State* L, int lib);  // after open_world: world methods
 
 }  // namespace rigidlab::lua

@@ -125,6 +125,17 @@ T.case("art:render draws links from their joints, with joint markers", function(
   T.fails(function() art:render{width = 3} end, "field 'width' must be an integer from 10 to 1000")
 end)
 
+T.case("w:view checks its options, and needs a terminal", function()
+  local w = spinning_box()
+  T.fails(function() w:view{dt = 0} end,
+    "bad argument #1 to 'world:view' (field 'dt' must be from 1e-6 to 1 (s), got 0)")
+  T.fails(function() w:view{speed = 100} end, "field 'speed' must be from 1/64 to 64")
+  T.fails(function() w:view{histroy = 5} end, "unknown field 'histroy'")
+  T.fails(function() w:view{show = "omegas"} end, "field 'show' must be one of")
+  T.fails(function() w:view{} end, "'world:view': a live view needs a terminal")
+  T.equal(w.time, 0, "nothing ran")
+end)
+
 T.case("export_html runs the world on and writes one page", function()
   local w = spinning_box()
   local path = os.tmpname()

@@ -1,0 +1,79 @@
+#include "cli/view.hpp"
+
+#include <cstdio>
+
+#include "cli/limits.hpp"
+#include "cli/run.hpp"
+#include "cli/usage.hpp"
+#include "lua/binding.hpp"
+#include "lua/rigidlab.hpp"
+#include "lua/world.hpp"
+
+namespace rigidlab::cli {
+namespace {
+
+struct ViewSession {
+  std::vector<std::string> arguments;  // the script, then its arguments
+  int exit_status = 0;
+};
+
+// As main's protected_main: everything that touches Lua runs in protected mode.
+int protected_view(lua_State* L) {
+  ViewSession& session = *static_cast<ViewSession*>(lua_touserdata(L, 1));
+  lua_settop(L, 0);
+  rigidlab::lua::open_all(L);
+  std::vector<char*> argv = {const_cast<char*>("rigidlab")};
+  for (std::string& a : session.arguments) argv.push_back(a.data());
+  create_arg_table(L, static_cast<int>(argv.size()), argv.data(), 1);
+  lua_gc(L, LUA_GCRESTART);
+  lua_gc(L, LUA_GCGEN, 0, 0);
+  const char* path = session.arguments[0].c_str();
+  int status = luaL_loadfilex(L, path, "t");
+  if (status == LUA_ERRFILE) {
+    session.exit_status = usage_error(lua_tostring(L, -1));
+    return 0;
+  }
+  if (status == LUA_OK) status = call_chunk(L, 0, 1, Traceback::append);
+  if (status != LUA_OK) {
+    report_error(L, "rigidlab: ");
+    session.exit_status = 1;
+    return 0;
+  }
+  if (rigidlab::lua::test_world(L, -1) == nullptr) {
+    std::fprintf(stderr, "rigidlab: view: %s must return a world, got %s\n", path,
+                 rigidlab::lua::value_type_name(L, -1));
+    session.exit_status = 1;
+    return 0;
+  }
+  lua_getfield(L, -1, "view");
+  lua_insert(L, -2);
+  if (call_chunk(L, 1, 0, Traceback::append) != LUA_OK) {
+    report_error(L, "rigidlab: ");
+    session.exit_status = 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int view_command(const std::vector<std::string>& arguments) {
+  if (arguments.empty())
+    return usage_error("'view' needs a script that returns a world: rigidlab view FILE.lua");
+  LimitedState state(Limits{}, WhenStuck::exit);
+  lua_State* L = state.get();
+  if (L == nullptr) {
+    std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
+    return 1;
+  }
+  lua_gc(L, LUA_GCSTOP);
+  ViewSession session{arguments};
+  lua_pushcfunction(L, protected_view);
+  lua_pushlightuserdata(L, &session);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    report_error(L, "rigidlab: ");
+    session.exit_status = 1;
+  }
+  return session.exit_status;
+}
+
+}  // namespace rigidlab::cli
