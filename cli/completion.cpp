@@ -4,29 +4,18 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "cli/lua_names.hpp"
 
 namespace rigidlab::cli {
 namespace {
 
 lua_State* completion_state = nullptr;
 std::vector<std::string> candidates;  // of the completion in progress
-
-const char* const keywords[] = {"and",   "break", "do",     "else", "elseif", "end",
-                                "false", "for",   "function", "goto", "if",   "in",
-                                "local", "nil",   "not",    "or",   "repeat", "return",
-                                "then",  "true",  "until",  "while"};
-
-bool is_identifier(const char* text) {
-  if (!(std::isalpha(static_cast<unsigned char>(*text)) || *text == '_')) return false;
-  for (; *text != '\0'; ++text)
-    if (!(std::isalnum(static_cast<unsigned char>(*text)) || *text == '_')) return false;
-  return true;
-}
 
 // Everything below reads tables raw (lua_rawget, lua_next, lua_getmetatable): Tab runs none of
 // the user's code, so a metamethod that loops or fails cannot hang or break the line editor.
@@ -54,7 +43,7 @@ void add_keys(lua_State* L, int index, const std::string& partial, std::vector<s
     if (lua_type(L, -1) != LUA_TSTRING) continue;
     const char* key = lua_tostring(L, -1);
     const bool hidden = std::strncmp(key, "__", 2) == 0 && partial.compare(0, 2, "__") != 0;
-    if (!hidden && is_identifier(key) && std::strncmp(key, partial.c_str(), partial.size()) == 0)
+    if (!hidden && is_name(key, std::strlen(key)) && std::strncmp(key, partial.c_str(), partial.size()) == 0)
       out.emplace_back(key);
   }
   if (lua_getmetatable(L, index)) {
@@ -105,7 +94,7 @@ int collect_candidates(lua_State* L) {
   if (separator == std::string::npos) {
     lua_pushglobaltable(L);
     add_keys(L, -1, word, found);
-    for (const char* keyword : keywords)
+    for (const char* keyword : lua_keywords)
       if (std::strncmp(keyword, word.c_str(), word.size()) == 0) found.emplace_back(keyword);
   } else {
     const std::string head = word.substr(0, separator + 1), partial = word.substr(separator + 1);

@@ -131,6 +131,10 @@ bool LimitedState::is_stop(const char* message) const {
          std::strstr(message, stop_message_) != nullptr;
 }
 
+bool LimitedState::stopped_by(const char* message) const {
+  return stop_message_[0] != '\0' && std::strstr(message, stop_message_) != nullptr;
+}
+
 std::string LimitedState::explain(const std::string& message) const {
   if (hit() == Hit::memory && message.find("not enough memory") != std::string::npos)
     return "stopped: " + limit_hit() + " reached";

@@ -70,6 +70,9 @@ class LimitedState {
   // Whether `message` is the error of a limit that stopped the code (or of Ctrl-C): the
   // message handler then adds no traceback. Allocates nothing.
   bool is_stop(const char* message) const;
+  // Whether `message` carries the error of a limit or of Ctrl-C that this state raised in
+  // the current run (code that catches errors to show them must let those through).
+  bool stopped_by(const char* message) const;
   // The message to show for an error `message` of the code: "stopped: the memory limit
   // (64 MB) reached" for Lua's "not enough memory" when the budget refused an allocation;
   // a limit's or Ctrl-C's error with the position of the code it stopped once (an error

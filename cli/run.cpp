@@ -6,6 +6,7 @@
 
 #include "cli/interrupt.hpp"
 #include "cli/limits.hpp"
+#include "cli/pretty_print.hpp"
 #include "cli/usage.hpp"
 #include "lua/text_only.hpp"
 
@@ -130,11 +131,15 @@ void print_results(lua_State* L, int base) {
   const int count = lua_gettop(L) - base;
   if (count <= 0) return;
   luaL_checkstack(L, LUA_MINSTACK, "too many results to print");
-  push_raw_global(L, "print");
+  lua_pushcfunction(L, pretty_print);
   lua_insert(L, base + 1);
   if (call_chunk(L, count, 0, Traceback::omit) != LUA_OK) {
-    lua_pushfstring(L, "error calling 'print' (%s)", lua_tostring(L, -1));
-    lua_remove(L, -2);
+    const LimitedState* limits = LimitedState::of(L);
+    const char* message = lua_tostring(L, -1);
+    if (message != nullptr && (limits == nullptr || !limits->stopped_by(message))) {
+      lua_pushfstring(L, "error printing the results (%s)", message);
+      lua_remove(L, -2);
+    }
     report_error(L, "");
   }
 }

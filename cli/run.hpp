@@ -34,8 +34,9 @@ int run_script(lua_State* L, const char* path);
 // none (then arg[0] is the interpreter).
 void create_arg_table(lua_State* L, int argc, char** argv, int script);
 
-// Prints every value above stack index `base` with the global `print` (tostring, tab
-// separated), then removes them. An error from `print` is reported, not raised.
+// Prints every value above stack index `base` (cli/pretty_print.hpp: tables with their fields,
+// tab separated), then removes them; limited and interruptible as a chunk is. An error (a
+// limit, Ctrl-C) is reported, not raised.
 void print_results(lua_State* L, int base);
 
 }  // namespace rigidlab::cli

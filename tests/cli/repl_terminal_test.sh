@@ -15,6 +15,11 @@ wait_for "first prompt" '^> $'
 
 enter '1+1'
 wait_for "an expression prints its value" '^2$'
+enter 'r = {} for i = 1, 40 do r[i] = i * 1000 end r.name = "r"'
+enter 'r'
+wait_for "a table shows its fields, packed to the terminal's width (100)" \
+  '^  1000, 2000, 3000, 4000, 5000, 6000, 7000, 8000, 9000, 10000, 11000, 12000, 13000, 14000, 15000,$'
+wait_for "then its named fields, one a line" '^  name = "r"$'
 
 enter 'print("looping") for i=1,1e12 do end'
 wait_for "a long loop starts" '^looping$'
