@@ -17,6 +17,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,17 @@ class ArticulationStepError : public std::runtime_error {
   ArticulationStepError(const std::string& message, double time)
       : std::runtime_error(message), time(time) {}
   double time;  // s, the start of the step that failed
+};
+
+class Articulation;
+
+// Something that watches an articulation's motion (a recorder): told after every completed
+// step, with the articulation in the state that step left. It may query it (kinematics,
+// energies) but neither change it nor throw.
+class ArticulationObserver {
+ public:
+  virtual ~ArticulationObserver() = default;
+  virtual void after_step(Articulation& art) noexcept = 0;
 };
 
 class Articulation {
@@ -106,6 +118,11 @@ class Articulation {
   // std::invalid_argument for dt not finite and > 0 and when called from a control.
   void step(double dt, int count = 1, const std::function<void()>& poll = {});
 
+  // Observers of completed steps (recorders); the articulation shares their ownership.
+  // Adding or removing one during a step is a std::logic_error.
+  void add_step_observer(std::shared_ptr<ArticulationObserver> observer);
+  void remove_step_observer(const ArticulationObserver* observer);
+
  private:
   void check_link(int link) const;
   void check_not_stepping(const char* what) const;
@@ -128,6 +145,7 @@ class Articulation {
   // Scratch, sized with the model: the total applied τ, q̈, and RK4's stages.
   Eigen::VectorXd applied_, qdd_;
   Eigen::VectorXd q0_, v0_, q_rate_, q_sum_, v_sum_;
+  std::vector<std::shared_ptr<ArticulationObserver>> observers_;
 };
 
 // q̇ as the derivative of q: the joint rates, and for a free base ẋ = v and the quaternion rate

@@ -3,6 +3,7 @@
 // articulated-body algorithm. Kept in this one file, each integrator a few lines over
 // coordinate_rates / integrate_coordinates / evaluate, so that one integration core can later
 // serve worlds and articulations alike (issue 15, item 3).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -63,7 +64,20 @@ void Articulation::step(double dt, int count, const std::function<void()>& poll)
   for (int k = 0; k < count; ++k) {
     if (poll) poll();
     step_once(dt);
+    for (const std::shared_ptr<ArticulationObserver>& o : observers_) o->after_step(*this);
   }
+}
+
+void Articulation::add_step_observer(std::shared_ptr<ArticulationObserver> observer) {
+  check_not_stepping("add an observer");
+  observers_.push_back(std::move(observer));
+}
+
+void Articulation::remove_step_observer(const ArticulationObserver* observer) {
+  check_not_stepping("remove an observer");
+  observers_.erase(std::remove_if(observers_.begin(), observers_.end(),
+                                  [&](const auto& o) { return o.get() == observer; }),
+                   observers_.end());
 }
 
 // One step; on any failure the state and the time are put back as they were.

@@ -29,11 +29,11 @@ void check_settable(lua_State* L, int object, const Where& where) {
   if (check_articulation(L, object).art.stepping()) where.error(L, stepping_rule, "set it");
 }
 
+}  // namespace
+
 LuaArticulation* test_articulation(lua_State* L, int index) {
   return test_tagged<LuaArticulation>(L, index, articulation_tag);
 }
-
-}  // namespace
 
 const TypeSpec articulation_type = {"articulation", &articulation_metatable_key, check_settable};
 

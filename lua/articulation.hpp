@@ -26,6 +26,8 @@ struct LuaArticulation {
 extern const TypeSpec articulation_type;
 extern const TypeSpec link_type;
 
+// The articulation at `index`, or nullptr (also for one finalised).
+LuaArticulation* test_articulation(lua_State* L, int index);
 // The articulation at `arg`, else a type error (or "was finalised").
 LuaArticulation& check_articulation(lua_State* L, int arg);
 // The same, refusing with the stepping error when a control is running its step.

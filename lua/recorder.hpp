@@ -1,15 +1,16 @@
-// A recording of a world's motion: at the start and after every `every`-th completed step,
-// the time, energies and momenta of the world and the pose and velocities of each recorded
-// body, as the world's own accessors give them. No Lua here; lua/record.cpp binds it
-// (w:record, rec:series, rec:csv) and the world calls after_step.
+// Recordings of motion: at the start and after every `every`-th completed step, the quantities
+// a world's or an articulation's own accessors give, in flat arrays. No Lua here; lua/record.cpp
+// binds them (w:record, art:record, rec:series, rec:csv) and the world or articulation calls
+// after_step (World::add_step_observer, Articulation::add_step_observer).
 //
 // Cost: nothing when no recorder is attached; when one is, a sample is a few dozen doubles
-// per body appended to flat arrays (amortised growth, no allocation per step otherwise).
+// per body or link appended to flat arrays (amortised growth, no allocation per step otherwise).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "engine/articulation.hpp"
 #include "engine/world.hpp"
 #include "present/csv.hpp"
 
@@ -20,55 +21,102 @@ enum class SeriesKind { number, vector, rotation };
 
 struct SeriesInfo {
   const char* name;
-  bool per_body;    // needs a body
+  bool indexed;     // of a body, a link or a coordinate: needs which
   SeriesKind kind;
   const char* doc;  // unit and frame
 };
 
-// Every series, world ones first; names as the world's and body's accessors are named.
-const std::vector<SeriesInfo>& series_list();
-// The series called `name` for a world (per_body false) or a body (true), or nullptr.
-const SeriesInfo* find_series(const std::string& name, bool per_body);
-
-class Recorder : public StepObserver {
+// What is common to every recording: the times, when it samples, whether it still does.
+class Recording {
  public:
-  // Records the bodies `ids` of `world` (in that order) every `every` >= 1 steps, starting
-  // with a sample of the state now.
-  Recorder(const World& world, std::vector<BodyStore::Id> ids, long every);
+  virtual ~Recording() = default;
 
-  // Called after each completed step. Every `every`-th step appends a sample; when a recorded
-  // body has left the world, or memory runs out, recording stops and stop_reason() says why.
-  void after_step(const World& world) noexcept override;
+  // Every series this recording offers, unindexed ones first.
+  virtual const std::vector<SeriesInfo>& series() const = 0;
+  // How many of the things an indexed series is about (bodies, links, coordinates).
+  virtual std::size_t index_count(const SeriesInfo& series) const = 0;
+  // The values of a series at each sample; `index` picks the body, link or coordinate.
+  virtual std::vector<double> numbers(const SeriesInfo& series, std::size_t index) const = 0;
+  virtual std::vector<Vec3> vectors(const SeriesInfo& series, std::size_t index) const = 0;
+  virtual std::vector<Quat> rotations(const SeriesInfo& series, std::size_t index) const = 0;
+
+  // The series called `name`, indexed or not, or nullptr.
+  const SeriesInfo* find(const std::string& name, bool indexed) const;
+  // Every series as CSV columns: "t", the unindexed ones, then "body1.position.x" and so on
+  // (`prefix` names what an index counts: "body", "link", "q").
+  std::vector<present::Column> columns() const;
+
   void stop(const std::string& reason);
-
   bool recording() const { return recording_; }
   const std::string& stop_reason() const { return stop_reason_; }
   long every() const { return every_; }
   std::size_t samples() const { return times_.size(); }
-  std::size_t body_count() const { return ids_.size(); }
-  const std::vector<BodyStore::Id>& ids() const { return ids_; }
   const std::vector<double>& times() const { return times_; }
 
-  // The values of a series (kind as SeriesInfo says) at each sample; `body` is the position in
-  // ids() for per-body series.
-  std::vector<double> numbers(const SeriesInfo& series, std::size_t body) const;
-  std::vector<Vec3> vectors(const SeriesInfo& series, std::size_t body) const;
-  std::vector<Quat> rotations(const SeriesInfo& series, std::size_t body) const;
+ protected:
+  explicit Recording(long every) : every_(every < 1 ? 1 : every) {}
+  // Counts a completed step; true when it is one to sample.
+  bool due() { return recording_ && ++steps_ % every_ == 0; }
+  // Runs `sample` keeping whole samples only: on std::bad_alloc the arrays are cut back to
+  // their sizes before it and recording stops.
+  template <class Sample>
+  void sample_or_stop(std::vector<std::vector<double>*> arrays, Sample&& sample) noexcept;
+  virtual const char* index_name(const SeriesInfo& series) const = 0;  // "body", "link", "q"
 
-  // Every series as CSV columns: t, the world's, then "body1.position.x" and so on.
-  std::vector<present::Column> columns() const;
+  std::vector<double> times_;
 
  private:
-  void sample(const World& world);
-
-  std::vector<BodyStore::Id> ids_;
   long every_;
   long steps_ = 0;
   bool recording_ = true;
   std::string stop_reason_;
-  std::vector<double> times_;
-  std::vector<double> world_;   // per sample: world_stride values
-  std::vector<double> bodies_;  // per sample and body: body_stride values
+};
+
+// A world: time, energies, momenta; per body its pose and velocities (world and body frame),
+// kinetic energy and angular momentum about its COM.
+class WorldRecorder : public Recording, public StepObserver {
+ public:
+  WorldRecorder(const World& world, std::vector<BodyStore::Id> ids, long every);
+  void after_step(const World& world) noexcept override;
+
+  const std::vector<SeriesInfo>& series() const override;
+  std::size_t index_count(const SeriesInfo&) const override { return ids_.size(); }
+  std::vector<double> numbers(const SeriesInfo& series, std::size_t body) const override;
+  std::vector<Vec3> vectors(const SeriesInfo& series, std::size_t body) const override;
+  std::vector<Quat> rotations(const SeriesInfo& series, std::size_t body) const override;
+  const std::vector<BodyStore::Id>& ids() const { return ids_; }
+
+ private:
+  const char* index_name(const SeriesInfo&) const override { return "body"; }
+  void sample(const World& world);
+
+  std::vector<BodyStore::Id> ids_;
+  std::vector<double> world_;   // per sample: 9 values
+  std::vector<double> bodies_;  // per sample and body: 17 values
+};
+
+// An articulation: time, energies; q and q̇ per coordinate; per link the pose of its frame (the
+// joint), its COM and its angular velocity (world).
+class ArticulationRecorder : public Recording, public ArticulationObserver {
+ public:
+  ArticulationRecorder(Articulation& art, long every);
+  void after_step(Articulation& art) noexcept override;
+
+  const std::vector<SeriesInfo>& series() const override;
+  std::size_t index_count(const SeriesInfo& series) const override;
+  std::vector<double> numbers(const SeriesInfo& series, std::size_t index) const override;
+  std::vector<Vec3> vectors(const SeriesInfo& series, std::size_t link) const override;
+  std::vector<Quat> rotations(const SeriesInfo& series, std::size_t link) const override;
+  std::size_t links() const { return links_; }
+
+ private:
+  const char* index_name(const SeriesInfo& series) const override;
+  void sample(Articulation& art);
+  std::size_t stride() const { return 3 + nq_ + nv_; }
+
+  std::size_t links_, nq_, nv_;
+  std::vector<double> state_;  // per sample: kinetic, potential, total energy, q, q̇
+  std::vector<double> poses_;  // per sample and link: position, orientation, COM, ω (13)
 };
 
 }  // namespace rigidlab::lua

@@ -143,6 +143,62 @@ T.case("a recorder outlives its world, and a finalised one says so", function()
   collectgarbage()
 end)
 
+T.case("art:record: q, qd, energies and link poses equal the accessors at the same steps", function()
+  local art = articulation{}
+  local upper = art:add_link{axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0), name = "upper"}
+  local lower = art:add_link{parent = upper, axis = vec3(0, 0, 1), origin = vec3(2, 0, 0), mass = 2,
+                             com = vec3(0.5, 0, 0), name = "lower"}
+  art:set_state({0.3, -0.2}, {0, 1})
+  local rec = art:record{every = 2}
+  local seen = {}
+  local function observe()
+    seen[#seen + 1] = {t = art.time, q = art.q, qd = art.qd, ke = art:kinetic_energy(),
+      pe = art:potential_energy(), e = art:energy(), p = lower:position(), r = lower:orientation(),
+      com = lower:to_world(vec3(0.5, 0, 0)), w = upper:angular_velocity()}
+  end
+  observe()
+  for k = 1, 20 do
+    art:step(1 / 120)
+    if k % 2 == 0 then observe() end
+  end
+  T.equal(#rec, 11, "samples at steps 0, 2, ..., 20")
+  for i, s in ipairs(seen) do
+    T.equal(rec.t[i], s.t, "t " .. i)
+    T.equal(rec:series("q", 1)[i], s.q[1], "q1 " .. i)
+    T.equal(rec:series("qd", 2)[i], s.qd[2], "qd2 " .. i)
+    T.near(rec:series("kinetic_energy")[i], s.ke, 0, "KE " .. i)
+    T.near(rec:series("potential_energy")[i], s.pe, 0, "PE " .. i)
+    T.near(rec:series("energy")[i], s.e, 1e-15 * math.max(1, math.abs(s.e)), "E " .. i)
+    T.near(rec:series("position", lower)[i], s.p, 0, "joint position " .. i)
+    T.near(rec:series("orientation", "lower")[i], s.r, 1e-15, "orientation " .. i)
+    T.near(rec:series("com", 2)[i], s.com, 1e-15, "COM " .. i)
+    T.near(rec:series("angular_velocity", upper)[i], s.w, 0, "omega " .. i)
+  end
+  T.equal(rec.bodies[2], lower, "rec.bodies lists the links")
+  T.fails(function() rec:series("q") end, "a coordinate is needed for 'q' (2 coordinates")
+  T.fails(function() rec:series("q", 3) end, "the index must be from 1 to 2, got 3")
+  T.fails(function() rec:series("position", "elbow") end, "elbow")
+  T.fails(function() rec:series("linear_momentum") end, "no articulation series 'linear_momentum'")
+  local path = os.tmpname()
+  rec:csv(path)
+  local header = io.lines(path)()
+  os.remove(path)
+  T.equal(header, "t,kinetic_energy,potential_energy,energy,q1,q2,qd1,qd2,link1.position.x," ..
+    "link1.position.y,link1.position.z,link1.orientation.w,link1.orientation.x,link1.orientation.y," ..
+    "link1.orientation.z,link1.com.x,link1.com.y,link1.com.z,link1.angular_velocity.x," ..
+    "link1.angular_velocity.y,link1.angular_velocity.z,link2.position.x,link2.position.y," ..
+    "link2.position.z,link2.orientation.w,link2.orientation.x,link2.orientation.y," ..
+    "link2.orientation.z,link2.com.x,link2.com.y,link2.com.z,link2.angular_velocity.x," ..
+    "link2.angular_velocity.y,link2.angular_velocity.z", "columns")
+  rec:stop()
+  art:step(1 / 120, 4)
+  T.equal(#rec, 11, "nothing after stop")
+  local rec2 = art:record{}
+  rec2 = nil
+  collectgarbage()
+  art:step(1 / 120, 2)  -- a collected recorder is detached; nothing breaks
+end)
+
 T.case("errors", function()
   local w, box = scene()
   local other = world{}
