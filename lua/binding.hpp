@@ -313,6 +313,8 @@ inline Quat& push_finite(lua_State* L, const Quat& q, int arg) {
 // What a C++ call threw, held without allocating (so that a std::bad_alloc can be held too).
 class Failure {
  public:
+  // Only the first byte is set: every bound call makes one (the bridge), so no memset.
+  Failure() { message_[0] = '\0'; }
   explicit operator bool() const { return kind_ != Kind::none; }
   bool out_of_memory() const { return kind_ == Kind::memory; }
   const char* what() const { return message_; }
@@ -326,7 +328,7 @@ class Failure {
  private:
   enum class Kind { none, memory, other };
   Kind kind_ = Kind::none;
-  char message_[480] = "";
+  char message_[480];
 };
 
 // Runs `f` and returns what it threw (an empty Failure when nothing). Lua errors (which the
