@@ -243,8 +243,10 @@ double check_number(lua_State* L, int index, const Where& where, double min, dou
   const std::string got = format_number(x);
   if (rule != nullptr) where.error(L, "must be %s, got %s", rule, got.c_str());
   if (!std::isfinite(x)) where.error(L, "must be finite, got %s", got.c_str());
-  if (std::isinf(max)) where.error(L, "must be >= %s, got %s", format_number(min).c_str(), got.c_str());
-  if (std::isinf(min)) where.error(L, "must be <= %s, got %s", format_number(max).c_str(), got.c_str());
+  if (std::isinf(max))
+    where.error(L, "must be >= %s, got %s", format_number(min).c_str(), got.c_str());
+  if (std::isinf(min))
+    where.error(L, "must be <= %s, got %s", format_number(max).c_str(), got.c_str());
   where.error(L, "must be in [%s, %s], got %s", format_number(min).c_str(),
               format_number(max).c_str(), got.c_str());
 }

@@ -106,7 +106,9 @@ const Entry* find_entry(lua_State* L, int index);
 class Where {
  public:
   // Argument `arg` (self is 1 in a method); `name` ("dt") starts the reason, or nullptr.
-  static Where argument(int arg, const char* name = nullptr) { return {Kind::argument, arg, name, nullptr}; }
+  static Where argument(int arg, const char* name = nullptr) {
+    return {Kind::argument, arg, name, nullptr};
+  }
   // Field `name` of the option table that is argument `arg`: world{substeps = 0}.
   static Where field(int arg, const char* name) { return {Kind::field, arg, name, nullptr}; }
   // An assignment to property `name` of a `type` object: w.substeps = 0.

@@ -185,7 +185,8 @@ int type_index(lua_State* L) {
   }
   const TypeSpec& type = upvalue_type(L);
   const char* key = push_key_name(L, 2);
-  field_error(L, type.name, key, "no such field; the fields are %s, the methods are in help(\"%s\")",
+  field_error(L, type.name, key,
+              "no such field; the fields are %s, the methods are in help(\"%s\")",
               push_property_list(L, properties, false), type.name);
 }
 

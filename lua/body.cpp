@@ -129,8 +129,8 @@ const Property properties[] = {
      nullptr},
     {"inv_mass", get_member<double, &Body::inverse_mass>, nullptr, "1/kg (0: static)",
      made_fixed, nullptr},
-    {"inertia", get_member<Mat3, &Body::inertia>, nullptr, "mat3, kg m², body frame, about the COM",
-     made_fixed, nullptr},
+    {"inertia", get_member<Mat3, &Body::inertia>, nullptr,
+     "mat3, kg m², body frame, about the COM", made_fixed, nullptr},
     {"inv_inertia", get_member<Mat3, &Body::inverse_inertia>, nullptr,
      "mat3, 1/(kg m²), body frame (0: static)", made_fixed, nullptr},
     {"static", get_static, nullptr, "true for an immovable body", made_fixed, nullptr},
@@ -172,7 +172,8 @@ bool read_mass(lua_State* L, double& mass) {
     return true;
   }
   if (std::isnan(mass) || std::isinf(mass))
-    arg_error(L, 1, "field 'mass' must be finite or math.huge, got %s", format_number(mass).c_str());
+    arg_error(L, 1, "field 'mass' must be finite or math.huge, got %s",
+              format_number(mass).c_str());
   if (is_static)
     arg_error(L, 1, "field 'mass' must be math.huge or absent for a static body, got %s",
               format_number(mass).c_str());
@@ -492,7 +493,9 @@ void read_material_fields(lua_State* L, int arg, double& restitution, double& fr
   lua_pop(L, 2);
 }
 
-BodyHandle* test_body(lua_State* L, int index) { return test_tagged<BodyHandle>(L, index, body_tag); }
+BodyHandle* test_body(lua_State* L, int index) {
+  return test_tagged<BodyHandle>(L, index, body_tag);
+}
 
 BodyHandle& check_body_handle(lua_State* L, int index, const Where& where) {
   BodyHandle* handle = test_body(L, index);

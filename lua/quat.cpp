@@ -1,7 +1,7 @@
 // quat: a quaternion value w + xi + yj + zk (four doubles in a userdata), mainly as a rotation.
-// Fields w, x, y, z (read-only: a quat is immutable, API.md "Conventions"). Rotations use the normalised quaternion, so a slightly
-// drifted one still rotates correctly; the zero quaternion, which is no rotation, is refused
-// wherever a rotation is needed.
+// Fields w, x, y, z (read-only: a quat is immutable, API.md "Conventions"). Rotations use the
+// normalised quaternion, so a slightly drifted one still rotates correctly; the zero
+// quaternion, which is no rotation, is refused wherever a rotation is needed.
 #include <cmath>
 
 #include "lua/binding.hpp"
@@ -101,7 +101,8 @@ int quat_index(lua_State* L) {
 int quat_newindex(lua_State* L) {
   check_quat(L, 1);
   const int i = component_index(L, 2);
-  if (i < 0) field_error(L, "quat", push_key_name(L, 2), "no such field; the fields are w, x, y, z");
+  if (i < 0)
+    field_error(L, "quat", push_key_name(L, 2), "no such field; the fields are w, x, y, z");
   const char* value = lua_type(L, 3) == LUA_TNUMBER ? push_shown_value(L, 3) : "new";
   static const char* const forms[] = {"%s, q.x, q.y, q.z", "q.w, %s, q.y, q.z",
                                       "q.w, q.x, %s, q.z", "q.w, q.x, q.y, %s"};

@@ -5,9 +5,9 @@
 // The world userdata holds a LuaWorld (placement-new, destroyed by __gc) and two user values:
 // 1 = the list of its body objects, in the order of the engine's body vector (so w:bodies()
 // and error messages can name bodies by index and return the same objects), 2 = the tables of
-// the extensions (push_world_table: the force callbacks of lua/world_forces.cpp, joints, ...). Body objects hold
-// the world's BodyStore by shared_ptr (lua/body.hpp), so they stay valid after the world is
-// collected.
+// the extensions (push_world_table: the force callbacks of lua/world_forces.cpp, joints, ...).
+// Body objects hold the world's BodyStore by shared_ptr (lua/body.hpp), so they stay valid
+// after the world is collected.
 #include "lua/world.hpp"
 
 #include <string>

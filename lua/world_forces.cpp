@@ -146,7 +146,8 @@ int world_add_plane(lua_State* L) {
   // The plane as the engine stores it (unit normal, offset/|normal|): a normal too short for
   // its offset is the table's fault, "bad argument #1 to 'world:add_plane' (offset / |normal|
   // must be finite, ...)".
-  const Plane plane = protect(L, 2, [&] { return make_plane(normal, offset, restitution, friction); });
+  const Plane plane =
+      protect(L, 2, [&] { return make_plane(normal, offset, restitution, friction); });
   const std::size_t index = protect(L, 2, [&] { return w.world.add_plane(plane); });
   lua_pushinteger(L, static_cast<lua_Integer>(index) + 1);
   return 1;
@@ -231,7 +232,8 @@ int world_step(lua_State* L) {
   LuaWorld& w = check_world(L, 1);
   const double dt = check_positive(L, 2, "dt");
   lua_Integer n = 1;
-  if (!lua_isnoneornil(L, 3)) n = check_integer(L, 3, Where::argument(3, "n"), 1, max_steps_per_call);
+  if (!lua_isnoneornil(L, 3))
+    n = check_integer(L, 3, Where::argument(3, "n"), 1, max_steps_per_call);
   check_no_extra_args(L, 3);
   if (w.world.stepping())  // self is the bad argument: "calling 'world:step' on bad self (...)"
     arg_error(L, 1, "the world is already stepping: a force callback cannot step its own world");
