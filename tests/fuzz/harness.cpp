@@ -3,9 +3,11 @@
 #include <lua.hpp>
 
 #include <chrono>
+#include <deque>
 #include <cstdlib>
 
 #include "lua/binding.hpp"
+#include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/sandbox.hpp"
 #include "tests/fuzz/program_generator.hpp"
@@ -121,6 +123,47 @@ int open_state(lua_State* L) {
   return 0;
 }
 
+// Runs the lesson at `index` as `rigidlab check` does: lesson{}'s raw reading (read_lesson), then
+// each step's run(ctx) protected, with a ctx in check mode that ends with the lesson. The
+// contexts outlive the state (a __gc may still use a ctx at lua_close): `contexts` keeps them.
+void run_lesson(lua_State* L, int index, std::deque<lua::LessonContext>& contexts) {
+  lua::LessonSpec spec;
+  std::string error;
+  if (!lua::read_lesson(L, index, spec, error)) return;
+  const int runs = lua_gettop(L);
+  lua::LessonContext& context = contexts.emplace_back();
+  context.tolerance = spec.tolerance;
+  lua::push_lesson_context(L, context);
+  const int ctx = lua_gettop(L);
+  for (lua_Integer step = 1; lua_rawgeti(L, runs, step) != LUA_TNIL; ++step) {
+    if (lua_type(L, -1) != LUA_TFUNCTION) {
+      lua_pop(L, 1);
+      continue;
+    }
+    lua_pushvalue(L, ctx);
+    if (lua_pcall(L, 1, 0, 0) != LUA_OK) lua_pop(L, 1);
+  }
+  context.ended = true;
+  lua_settop(L, runs - 1);
+}
+
+// lua_CFunction: runs the lessons among the program's results (arguments): a lesson, or a list
+// of lessons.
+int run_returned_lessons(lua_State* L) {
+  auto& contexts = *static_cast<std::deque<lua::LessonContext>*>(lua_touserdata(L, 1));
+  for (int i = 2, results = lua_gettop(L); i <= results; ++i) {
+    if (lua_type(L, i) != LUA_TTABLE) continue;
+    run_lesson(L, i, contexts);
+    for (lua_Integer k = 1; lua_rawgeti(L, i, k) == LUA_TTABLE; ++k) {
+      run_lesson(L, lua_gettop(L), contexts);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_gc(L, LUA_GCCOLLECT);  // finalisers that use a ctx after its lesson
+  return 0;
+}
+
 std::string first_line(lua_State* L) {
   const char* message = lua_tostring(L, -1);
   if (message == nullptr) return "(error object is not a string)";
@@ -143,6 +186,7 @@ std::string run_input(const std::uint8_t* data, std::size_t size, const RunLimit
   run.deadline = std::chrono::steady_clock::now() +
                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                      std::chrono::duration<double>(limits.timeout_seconds));
+  std::deque<lua::LessonContext> contexts;  // declared before the state: they outlive it
   lua_State* L = lua_newstate(allocate, &run);
   if (L == nullptr) return "cannot create a state";
   lua_sethook(L, hook, LUA_MASKCOUNT, hook_interval);
@@ -153,8 +197,11 @@ std::string run_input(const std::uint8_t* data, std::size_t size, const RunLimit
     result = "cannot open the libraries: " + first_line(L);
   } else {
     const std::string program = program_for(data, size);
+    lua_pushcfunction(L, run_returned_lessons);
+    lua_pushlightuserdata(L, &contexts);
     if (luaL_loadbufferx(L, program.data(), program.size(), "=fuzz", "t") != LUA_OK ||
-        lua_pcall(L, 0, 0, 0) != LUA_OK)
+        lua_pcall(L, 0, LUA_MULTRET, 0) != LUA_OK ||
+        lua_pcall(L, lua_gettop(L) - 1, 0, 0) != LUA_OK)
       result = first_line(L);
   }
   lua_close(L);
