@@ -92,6 +92,20 @@ run "garbage worlds do not fill the limit" -- "$rigidlab" --max-memory 16 \
 expect_status 0
 expect_stdout $'ok\n'
 
+# ... in lessons too: `rigidlab check` and `rigidlab lesson` charge a step's engine memory.
+cat >"$scratch/hog_lesson.lua" <<'EOF'
+return lesson{id = "engine-hog", title = "Planes without end", source = "tests", steps = {
+  {title = "Planes", text = "More and more.", run = function(ctx)
+    local w = world{}
+    for i = 1, 5e6 do w:add_plane() end
+  end},
+}}
+EOF
+run "a lesson's engine memory under check's memory limit" -- \
+  "$rigidlab" check --max-memory 16 "$scratch/hog_lesson.lua"
+expect_status 1
+expect_stdout_contains "error: step 1: stopped: the memory limit (16 MB) reached"
+
 run "a memory limit smaller than the libraries: stopped, not a panic" -- "$rigidlab" --max-memory 0.001 -e 'print(1)'
 expect_status 1
 expect_stdout ""
