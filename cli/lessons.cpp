@@ -110,6 +110,12 @@ int page_print(lua_State* L) {
   return 0;
 }
 
+// page_print with a std::bad_alloc (the lesson's C++ memory is charged to its limit) raised as
+// Lua's memory error.
+int guarded_print(lua_State* L) {
+  return lua::protect(L, [L] { return page_print(L); });
+}
+
 // ---- c: a step's code ------------------------------------------------------------------------
 
 // A number as Lua source that reads back as the same double (the shortest of %.15g..%.17g).
@@ -386,7 +392,7 @@ int present_protected(lua_State* L) {
   lua::open_all(L);
   if (!run.file->trusted) lua::apply_sandbox(L);
   lua_pushlightuserdata(L, run.page);
-  lua_pushcclosure(L, page_print, 1);
+  lua_pushcclosure(L, guarded_print, 1);
   lua_setglobal(L, "print");
   LoadedLesson lesson;
   std::string error;

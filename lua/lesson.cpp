@@ -158,10 +158,13 @@ Tolerance check_tolerance(lua_State* L, int arg, const LessonContext& context) {
   if (lua_type(L, arg) == LUA_TNUMBER)
     return Tolerance{0.0, check_nonnegative(L, arg, "tolerance"), ""};
   if (lua_type(L, arg) != LUA_TTABLE) type_error(L, arg, "number or {abs =, rel =, reason =}");
-  Tolerance tolerance;
-  std::string error;
-  if (!read_tolerance_table(L, arg, tolerance, error)) arg_error(L, arg, "%s", error.c_str());
-  return tolerance;
+  {
+    Tolerance tolerance;
+    std::string error;
+    if (read_tolerance_table(L, arg, tolerance, error)) return tolerance;
+    lua_pushlstring(L, error.data(), error.size());
+  }  // the C++ strings are freed before the error jumps past this frame
+  arg_error(L, arg, "%s", lua_tostring(L, -1));
 }
 
 // ---- checks ----------------------------------------------------------------------------------
@@ -212,7 +215,7 @@ std::string tolerance_note(const Tolerance& tolerance, bool given, const std::st
 // ctx:expect(label, got, want [, tol]) -> true when got agrees with want
 int context_expect(lua_State* L) {
   LessonContext& context = check_context(L, 1);
-  const std::string label = check_text(L, 2);
+  const char* label = check_text(L, 2);  // no C++ string before the last argument check
   check_value(L, 3);
   check_value(L, 4);
   check_no_extra_args(L, 5);
@@ -238,7 +241,7 @@ bool check_bound(lua_State* L, int arg, double& bound) {
 // no bound)
 int context_expect_range(lua_State* L) {
   LessonContext& context = check_context(L, 1);
-  const std::string label = check_text(L, 2);
+  const char* label = check_text(L, 2);
   check_value(L, 3);
   check_no_extra_args(L, 5);
   double low = 0.0, high = 0.0;
@@ -306,16 +309,20 @@ int context_table(lua_State* L) {
   check_no_extra_args(L, 3);
   const int columns = static_cast<int>(lua_rawlen(L, 2));
   if (columns < 1) arg_error(L, 2, "at least one column heading expected");
+  const lua_Integer rows = static_cast<lua_Integer>(lua_rawlen(L, 3));
+  for (lua_Integer i = 1; i <= rows; ++i) {  // checked before any C++ string is made
+    if (lua_rawgeti(L, 3, i) != LUA_TTABLE)
+      arg_error(L, 3, "row %d must be a table, got %s", (int)i, value_type_name(L, -1));
+    lua_pop(L, 1);
+  }
   std::vector<std::vector<std::string>> cells(1);
   for (int j = 1; j <= columns; ++j) {
     lua_rawgeti(L, 2, j);
     cells[0].push_back(luaL_tolstring(L, -1, nullptr));
     lua_pop(L, 2);
   }
-  const lua_Integer rows = static_cast<lua_Integer>(lua_rawlen(L, 3));
   for (lua_Integer i = 1; i <= rows; ++i) {
-    if (lua_rawgeti(L, 3, i) != LUA_TTABLE)
-      arg_error(L, 3, "row %d must be a table, got %s", (int)i, value_type_name(L, -1));
+    lua_rawgeti(L, 3, i);
     std::vector<std::string> row;
     for (int j = 1; j <= columns; ++j) {
       lua_rawgeti(L, -1, j);
@@ -499,39 +506,51 @@ bool read_lesson_tolerance(lua_State* L, int lesson, LessonSpec& spec, std::stri
 int lesson_new(lua_State* L) {
   if (lua_type(L, 1) != LUA_TTABLE) type_error(L, 1, "table");
   check_no_extra_args(L, 1);
-  LessonSpec spec;
-  std::string error;
-  if (!read_lesson(L, 1, spec, error)) arg_error(L, 1, "%s", error.c_str());
-  lua_settop(L, 1);
-  return 1;
+  {
+    LessonSpec spec;
+    std::string error;
+    if (read_lesson(L, 1, spec, error)) {
+      lua_settop(L, 1);
+      return 1;
+    }
+    lua_pushlstring(L, error.data(), error.size());
+  }  // the C++ strings are freed before the error jumps past this frame
+  arg_error(L, 1, "%s", lua_tostring(L, -1));
+}
+
+// A std::bad_alloc from the strings a method builds (while a lesson runs, C++ memory is charged
+// to its memory limit) becomes Lua's memory error instead of crossing Lua's frames.
+template <lua_CFunction F>
+int guarded(lua_State* L) {
+  return protect(L, [L] { return F(L); });
 }
 
 const Entry context_methods[] = {
-    {"show", context_show, "ctx:show", "ctx:show(label, value)",
+    {"show", guarded<context_show>, "ctx:show", "ctx:show(label, value)",
      "Prints a labelled value: a number, vec3, mat3, quat, string or table."},
-    {"expect", context_expect, "ctx:expect", "ctx:expect(label, got, want [, tol]) -> ok",
+    {"expect", guarded<context_expect>, "ctx:expect", "ctx:expect(label, got, want [, tol]) -> ok",
      "Checks got against the document's value and prints got, want and ✓ or ✗ (with the\n"
      "reason: the first key or component that differs). Numbers agree within tol: relative to\n"
      "max(1, |want|) (default 1e-9, or the lesson's tolerance), or {abs =, rel =, reason =}\n"
      "(the reason is printed); ±inf equal themselves, nan nothing. vec3, mat3 and quat are\n"
      "compared component-wise, strings, booleans and nil exactly, tables deeply (every key).\n"
      "A failure is recorded (the check fails), not raised."},
-    {"expect_range", context_expect_range, "ctx:expect_range",
+    {"expect_range", guarded<context_expect_range>, "ctx:expect_range",
      "ctx:expect_range(label, got, low, high) -> ok",
      "Checks low <= got <= high and prints ✓ or ✗; either bound may be nil (no bound)."},
-    {"plot", context_plot, "ctx:plot",
+    {"plot", guarded<context_plot>, "ctx:plot",
      "ctx:plot{ {x = xs, y = ys, label =}, ..., title =, xlabel =, ylabel =, width =, height = }",
      "A line chart in the lesson, as plot.lines draws it, indented like the lesson's tables and\n"
      "as wide as the lesson (unless width is given). An exported transcript (rigidlab lesson ID\n"
      "--export FILE.md) has it as an SVG file beside the Markdown."},
-    {"table", context_table, "ctx:table", "ctx:table(columns, rows)",
+    {"table", guarded<context_table>, "ctx:table", "ctx:table(columns, rows)",
      "Prints an aligned table: columns a list of headings, rows a list of lists."},
-    {"say", context_say, "ctx:say", "ctx:say(text)", "Prints a line of explanation."},
+    {"say", guarded<context_say>, "ctx:say", "ctx:say(text)", "Prints a line of explanation."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry context_metamethods[] = {
     {"__gc", context_gc, "ctx.__gc", "", ""},
-    {"__tostring", context_tostring, "ctx.__tostring", "tostring(ctx)", ""},
+    {"__tostring", guarded<context_tostring>, "ctx.__tostring", "tostring(ctx)", ""},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 // The ctx of lesson_context(): one for the process, never freed, so that no ctx made by it
@@ -555,11 +574,11 @@ int lesson_context(lua_State* L) {
 }
 
 const Entry functions[] = {
-    {"lesson_context", lesson_context, "lesson_context", "lesson_context() -> ctx",
+    {"lesson_context", guarded<lesson_context>, "lesson_context", "lesson_context() -> ctx",
      "A lesson's ctx outside any lesson, printing what it shows and checks: to try the code\n"
      "of a step (the lesson's key c shows it) in the REPL, run(lesson_context()).\n"
      "tostring(ctx) counts its checks."},
-    {"lesson", lesson_new, "lesson",
+    {"lesson", guarded<lesson_new>, "lesson",
      "lesson{id =, title =, source =, steps = {...} [, tolerance =]} -> lesson",
      "Declares a lesson (a file in lessons/ returns one). Each step is\n"
      "{title =, text =, formula =, run = function(ctx) ... end}: text explains in words,\n"
