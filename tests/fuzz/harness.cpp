@@ -6,6 +6,7 @@
 #include <deque>
 #include <cstdlib>
 
+#include "cli/memory_budget.hpp"
 #include "lua/binding.hpp"
 #include "lua/lesson.hpp"
 #include "lua/rigidlab.hpp"
@@ -19,10 +20,14 @@ constexpr int hook_interval = 1000;       // VM instructions between two checks 
 constexpr std::size_t max_subject = 256;  // bytes, for Lua's pattern functions
 constexpr int max_quantifiers = 2;
 
-// The limits of one run, reached from the allocator, the hook and the stop check.
+// The limits of one run, reached from the allocator, the hook and the stop check. The memory
+// limit is the CLI's budget (cli/memory_budget.hpp): Lua's allocations and the engine's C++
+// ones count against it together, as under rigidlab --max-memory.
 struct Run {
+  explicit Run(const RunLimits& run_limits)
+      : limits(run_limits), budget(run_limits.max_memory_bytes) {}
   RunLimits limits;
-  std::size_t used_bytes = 0;
+  cli::MemoryBudget budget;
   long long instructions = 0;
   int stop_checks = 0;
   std::chrono::steady_clock::time_point deadline;
@@ -40,13 +45,12 @@ void* allocate(void* self, void* block, std::size_t old_size, std::size_t new_si
   const std::size_t old_bytes = block != nullptr ? old_size : 0;  // else old_size is a type tag
   if (new_size == 0) {
     std::free(block);
-    run.used_bytes -= old_bytes;
+    run.budget.lua_changed(old_bytes, 0);
     return nullptr;
   }
-  if (new_size > old_bytes && run.used_bytes - old_bytes + new_size > run.limits.max_memory_bytes)
-    return nullptr;
+  if (!run.budget.lua_may_grow(old_bytes, new_size)) return nullptr;
   void* result = std::realloc(block, new_size);
-  if (result != nullptr) run.used_bytes = run.used_bytes - old_bytes + new_size;
+  if (result != nullptr) run.budget.lua_changed(old_bytes, new_size);
   return result;
 }
 
@@ -164,6 +168,13 @@ int run_returned_lessons(lua_State* L) {
   return 0;
 }
 
+// lua_pcall with the C++ heap charged to the run's memory budget, as the CLI charges a user's
+// call: inside, a std::bad_alloc past the limit becomes Lua's memory error in the bindings.
+int charged_pcall(lua_State* L, int arguments, int results, Run& run) {
+  const cli::ChargeHeap charge(&run.budget);
+  return lua_pcall(L, arguments, results, 0);
+}
+
 std::string first_line(lua_State* L) {
   const char* message = lua_tostring(L, -1);
   if (message == nullptr) return "(error object is not a string)";
@@ -181,8 +192,7 @@ std::string program_for(const std::uint8_t* data, std::size_t size) {
 
 std::string run_input(const std::uint8_t* data, std::size_t size, const RunLimits& limits) {
   if (size == 0) return "";
-  Run run;
-  run.limits = limits;
+  Run run(limits);
   run.deadline = std::chrono::steady_clock::now() +
                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                      std::chrono::duration<double>(limits.timeout_seconds));
@@ -193,15 +203,15 @@ std::string run_input(const std::uint8_t* data, std::size_t size, const RunLimit
   lua::set_stop_check(L, stop_check, &run);
   std::string result;
   lua_pushcfunction(L, open_state);
-  if (lua_pcall(L, 0, 0, 0) != LUA_OK) {
+  if (charged_pcall(L, 0, 0, run) != LUA_OK) {
     result = "cannot open the libraries: " + first_line(L);
   } else {
     const std::string program = program_for(data, size);
     lua_pushcfunction(L, run_returned_lessons);
     lua_pushlightuserdata(L, &contexts);
     if (luaL_loadbufferx(L, program.data(), program.size(), "=fuzz", "t") != LUA_OK ||
-        lua_pcall(L, 0, LUA_MULTRET, 0) != LUA_OK ||
-        lua_pcall(L, lua_gettop(L) - 1, 0, 0) != LUA_OK)
+        charged_pcall(L, 0, LUA_MULTRET, run) != LUA_OK ||
+        charged_pcall(L, lua_gettop(L) - 1, 0, run) != LUA_OK)
       result = first_line(L);
   }
   lua_close(L);

@@ -18,7 +18,7 @@ namespace rigidlab::fuzz {
 
 struct RunLimits {
   long long max_instructions = 2'000'000;
-  std::size_t max_memory_bytes = std::size_t(64) << 20;
+  std::size_t max_memory_bytes = std::size_t(64) << 20;  // Lua's and the engine's together
   double timeout_seconds = 2.0;  // checked by the count hook and the engine's stop check
 };
 
