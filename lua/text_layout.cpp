@@ -14,10 +14,37 @@ std::size_t display_width(const std::string& text) {
       text.begin(), text.end(), [](unsigned char c) { return starts_code_point(c); }));
 }
 
+namespace {
+// Byte length of the longest head of `word` at most `columns` wide, cut after its last '/'
+// when that keeps at least half the line (a path breaks between its folders), else at a code
+// point.
+std::size_t head_that_fits(const std::string& word, std::size_t columns) {
+  std::size_t end = 0, seen = 0, after_slash = 0;
+  while (end < word.size()) {
+    std::size_t next = end + 1;
+    while (next < word.size() && !starts_code_point(static_cast<unsigned char>(word[next]))) ++next;
+    if (++seen > columns) break;
+    end = next;
+    if (word[end - 1] == '/') after_slash = end;
+  }
+  return after_slash >= columns / 2 ? after_slash : std::max<std::size_t>(end, 1);
+}
+}  // namespace
+
 std::string fit_words(const std::string& text, const std::string& indent, std::size_t width) {
   std::string out, line;
   std::istringstream words(text);
+  // A word wider than a whole line (a long path) is broken so that no line overflows; below
+  // 8 usable columns it is left whole rather than cut into pieces nobody can read.
+  const std::size_t usable = width > display_width(indent) ? width - display_width(indent) : 0;
   for (std::string word; words >> word;) {
+    while (usable >= 8 && display_width(word) > usable) {
+      if (!line.empty()) out += indent + line + "\n";
+      line.clear();
+      const std::size_t head = head_that_fits(word, usable);
+      out += indent + word.substr(0, head) + "\n";
+      word.erase(0, head);
+    }
     if (!line.empty() && display_width(indent + line + " " + word) > width) {
       out += indent + line + "\n";
       line.clear();

@@ -1,5 +1,5 @@
 // Text laid out in columns (lua/text_layout): widths count code points, lines never pass the
-// width unless one word is wider, and cut text ends in "…" at a code point boundary.
+// width (a word wider than a line of 8 or more columns is broken), and cut text ends in "…" at a code point boundary.
 #include "lua/text_layout.hpp"
 
 #include <gtest/gtest.h>
@@ -37,6 +37,15 @@ TEST(TextLayout, FitWordsBreaksBetweenWordsWithinTheWidth) {
       EXPECT_EQ(x, y);
     }
   }
+}
+
+TEST(TextLayout, AWordWiderThanTheLineBreaksAfterASlashOrAtACodePoint) {
+  // A path breaks between folders when that keeps half the line or more.
+  EXPECT_EQ(fit_words("from /home/student/lessons/mine/x.lua", "", 16),
+            "from\n/home/student/\nlessons/mine/\nx.lua\n");
+  // No slash late enough: cut at the width, counting code points (ω is 2 bytes).
+  EXPECT_EQ(fit_words("ωωωωωωωωωωωω", "  ", 10), "  ωωωωωωωω\n  ωωωω\n");
+  EXPECT_EQ(fit_words_after("from: ", "/tmp/a-very-long-folder", 16), "from: /tmp/\n      a-very-lon\n      g-folder\n");
 }
 
 TEST(TextLayout, HangingLinesLineUpUnderTheFirst) {

@@ -108,6 +108,10 @@ fi
 # A new session loads the history: Up recalls the last entry; repeating it adds no duplicate.
 start HOME="$home"
 wait_for "second session" '^> $'
+# Once in CI, under load, Up sent at once after the first prompt showed as "> 1+2A" (the
+# escape sequence split; not reproduced in 40 runs here, with or without load). A short settle
+# keeps this check about the history, not about typing ahead at start-up.
+sleep 0.3
 key Up
 wait_for "Up recalls the last line of the previous session" '^> 1\+2$'
 key Enter
