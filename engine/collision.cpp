@@ -7,6 +7,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "engine/constraint_row.hpp"
+
 namespace rigidlab {
 namespace {
 
@@ -62,9 +64,19 @@ Mat3 inverse_mass_matrix(const Body& b, const Vec3& r1, const Vec3& r2) {
   return b.inverse_mass * Mat3::Identity() - skew(r2) * inverse_world_inertia(b) * skew(r1);
 }
 
+// K = J W Jᵀ for the three point rows along the world axes (engine/constraint_row.hpp
+// coupling: the engine's one J W Jᵀ). It equals M_a⁻¹(r_a, r_a) + M_b⁻¹(r_b, r_b) of 002_*
+// "Inverse Mass Matrix" (inverse_mass_matrix above), which the tests check.
 Mat3 contact_inverse_mass(const Body& a, const Body& b, const Vec3& point) {
   const Vec3 ra = point - a.position, rb = point - b.position;
-  return inverse_mass_matrix(a, ra, ra) + inverse_mass_matrix(b, rb, rb);
+  const Mat3 inverse_a = inverse_world_inertia(a), inverse_b = inverse_world_inertia(b);
+  Jacobian rows[3];
+  for (int k = 0; k < 3; ++k) rows[k] = point_jacobian(Vec3::Unit(k), ra, rb);
+  Mat3 k;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      k(i, j) = coupling(rows[i], rows[j], a.inverse_mass, inverse_a, b.inverse_mass, inverse_b);
+  return k;
 }
 
 double effective_mass(const Body& a, const Body& b, const Vec3& point, const Vec3& normal) {
@@ -74,7 +86,9 @@ double effective_mass(const Body& a, const Body& b, const Vec3& point, const Vec
   if (!is_finite(point)) throw std::invalid_argument("point must be finite");
   if (is_static(a) && is_static(b)) throw std::invalid_argument("both bodies are immovable");
   const Vec3 n = direction(normal);
-  const double jwj = n.dot(contact_inverse_mass(a, b, point) * n);
+  const Jacobian j = point_jacobian(n, point - a.position, point - b.position);
+  const double jwj = coupling(j, j, a.inverse_mass, inverse_world_inertia(a), b.inverse_mass,
+                              inverse_world_inertia(b));
   if (!std::isfinite(jwj) || !(jwj > 0.0))
     throw std::invalid_argument("point " + format_vec3(point) +
                                 " is too far from the centres of mass: J W Jᵀ overflows");

@@ -1,5 +1,6 @@
-// Small helpers shared by the contact solver's files (engine/contact_solver.cpp,
-// contact_finder.cpp, contact_positions.cpp): not part of the engine's interface.
+// Small helpers shared by the contact constraints' files (engine/contact_constraints.cpp,
+// contact_finder.cpp, contact_restitution.cpp, contact_positions.cpp): not part of the
+// engine's interface.
 #pragma once
 
 #include <cmath>
@@ -7,7 +8,7 @@
 #include <cstdint>
 #include <tuple>
 
-#include "engine/contact_solver.hpp"
+#include "engine/contact_constraints.hpp"
 
 namespace rigidlab::contact_detail {
 
@@ -35,44 +36,21 @@ inline void friction_directions(const Vec3& n, const Vec3& slip, Vec3& t1, Vec3&
 
 // The order of contacts: by the first body (a, or the body of a plane contact), then other
 // bodies before planes, then the other body or plane, then the feature.
-inline auto sort_key(std::size_t a, std::size_t b, std::size_t plane, std::uint32_t feature) {
-  const bool is_plane = a == no_body;
-  return std::make_tuple(is_plane ? b : a, is_plane, is_plane ? plane : b, feature);
+inline auto sort_key(BodyId a, BodyId b, std::size_t plane, std::uint32_t feature) {
+  const bool is_plane = !a.valid();
+  return std::make_tuple(is_plane ? b : a, is_plane, is_plane ? BodyId{} : b,
+                         is_plane ? plane : 0, feature);
 }
 inline auto sort_key(const ContactInfo& c) { return sort_key(c.a, c.b, c.plane, c.feature); }
 
 // Velocity of the material point at offset r from the COM of a solver body (m/s).
-template <class SolverBody>
-Vec3 point_velocity_of(const SolverBody& s, const Vec3& r) {
+inline Vec3 point_velocity_of(const SolverBody& s, const Vec3& r) {
   return s.velocity + s.angular_velocity.cross(r);
 }
 
-// 001_* Appendix D: J W Jᵀ of one constraint direction d (unit), the inverse of the mass
-// the contact feels along d (1/kg).
-template <class SolverBody>
-double inverse_effective_mass(const SolverBody& a, const Vec3& r_a, const SolverBody& b,
-                              const Vec3& r_b, const Vec3& d) {
-  const Vec3 ra_d = r_a.cross(d), rb_d = r_b.cross(d);
-  return a.inverse_mass + b.inverse_mass + ra_d.dot(a.inverse_inertia * ra_d) +
-         rb_d.dot(b.inverse_inertia * rb_d);
-}
-
-inline double inverse_or_zero(double k) { return k > 0.0 ? 1.0 / k : 0.0; }
+inline double inverse_or_zero(double k) { return k > 0.0 && std::isfinite(k) ? 1.0 / k : 0.0; }
 
 // m, the farthest a shape is looked ahead in one step.
 constexpr double max_sweep = 1e6;
-
-// How long the forces act on the velocities the impulses are computed against (s).
-inline double force_time(ContactVelocities velocities, double dt) {
-  switch (velocities) {
-    case ContactVelocities::after_forces:
-      return dt;
-    case ContactVelocities::mid_step:
-      return 0.5 * dt;
-    case ContactVelocities::current:
-      break;
-  }
-  return 0.0;
-}
 
 }  // namespace rigidlab::contact_detail

@@ -13,9 +13,9 @@ std::string nonnegative_problem(double x, const char* what) {
   return {};
 }
 
-// Velocity of the end of the spring on body `index` at world point p, or 0 for an anchor.
-Vec3 end_velocity(const std::vector<Body>& bodies, std::size_t index, const Vec3& p) {
-  return index == no_body ? Vec3::Zero() : point_velocity(bodies[index], p);
+// Velocity of the end of the spring on body b at world point p, or 0 for an anchor.
+Vec3 end_velocity(const Body* b, const Vec3& p) {
+  return b == nullptr ? Vec3::Zero() : point_velocity(*b, p);
 }
 
 }  // namespace
@@ -38,39 +38,36 @@ std::string drag_problem(const Drag& d) {
   return problem.empty() ? nonnegative_problem(d.angular, "angular drag") : problem;
 }
 
-Vec3 spring_end_a(const std::vector<Body>& bodies, const Spring& s) {
-  return to_world(bodies[s.a], s.a_point);
-}
+Vec3 spring_end_a(const Body& a, const Spring& s) { return to_world(a, s.a_point); }
 
-Vec3 spring_end_b(const std::vector<Body>& bodies, const Spring& s) {
-  return s.b == no_body ? s.anchor : to_world(bodies[s.b], s.b_point);
+Vec3 spring_end_b(const Body* b, const Spring& s) {
+  return b == nullptr ? s.anchor : to_world(*b, s.b_point);
 }
 
 // Baraff & Witkin 2001, "Particle System Dynamics" 4.3 (damped spring), sign for body a.
-Vec3 spring_force(const std::vector<Body>& bodies, const Spring& s) {
-  const Vec3 pa = spring_end_a(bodies, s);
-  const Vec3 pb = spring_end_b(bodies, s);
+Vec3 spring_force(const Body& a, const Body* b, const Spring& s) {
+  const Vec3 pa = spring_end_a(a, s);
+  const Vec3 pb = spring_end_b(b, s);
   const Vec3 d = pb - pa;
   if (is_zero(d)) return Vec3::Zero();
   const double length = stable_norm(d);
   const Vec3 u = unit(d);
-  const Vec3 relative_velocity = end_velocity(bodies, s.b, pb) - end_velocity(bodies, s.a, pa);
+  const Vec3 relative_velocity = end_velocity(b, pb) - end_velocity(&a, pa);
   return (s.stiffness * (length - s.rest_length) + s.damping * relative_velocity.dot(u)) * u;
 }
 
-void apply_spring(std::vector<Body>& bodies, const Spring& s) {
-  const Vec3 f = spring_force(bodies, s);
-  apply_force(bodies[s.a], f, spring_end_a(bodies, s));
-  if (s.b != no_body) apply_force(bodies[s.b], -f, spring_end_b(bodies, s));
+void apply_spring(Body& a, Body* b, const Spring& s) {
+  const Vec3 f = spring_force(a, b, s);
+  apply_force(a, f, spring_end_a(a, s));
+  if (b != nullptr) apply_force(*b, -f, spring_end_b(b, s));
 }
 
-double spring_potential_energy(const std::vector<Body>& bodies, const Spring& s) {
-  const double stretch = stable_norm(spring_end_b(bodies, s) - spring_end_a(bodies, s)) - s.rest_length;
+double spring_potential_energy(const Body& a, const Body* b, const Spring& s) {
+  const double stretch = stable_norm(spring_end_b(b, s) - spring_end_a(a, s)) - s.rest_length;
   return 0.5 * s.stiffness * stretch * stretch;
 }
 
-void apply_drag(std::vector<Body>& bodies, const Drag& d) {
-  Body& b = bodies[d.body];
+void apply_drag(Body& b, const Drag& d) {
   apply_force(b, -d.linear * b.velocity);
   apply_torque(b, -d.angular * b.angular_velocity);
 }

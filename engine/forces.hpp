@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "engine/body.hpp"
+#include "engine/body_store.hpp"
 
 namespace rigidlab {
 
-inline constexpr std::size_t no_body = static_cast<std::size_t>(-1);
 
 // A Hooke spring with a damper along its line, from a point of body a to a point of body b or
 // to a fixed world anchor (b == no_body). With d = p_b − p_a, L = |d|, u = d/L and the relative
@@ -26,8 +26,8 @@ inline constexpr std::size_t no_body = static_cast<std::size_t>(-1);
 // with L₀ = 0 its elastic part is 001_*'s F = k x. When L = 0 the direction is undefined and
 // the spring exerts no force (with L₀ = 0 the elastic force is k d = 0 there anyway).
 struct Spring {
-  std::size_t a = no_body;          // index of body a in the world
-  std::size_t b = no_body;          // index of body b, or no_body for a world anchor
+  BodyId a;                         // body a (engine/body_store.hpp)
+  BodyId b;                         // body b, or no_body_id for a world anchor
   Vec3 a_point = Vec3::Zero();      // m, body-a coordinates (relative to its COM)
   Vec3 b_point = Vec3::Zero();      // m, body-b coordinates
   Vec3 anchor = Vec3::Zero();       // m, world, used when b == no_body
@@ -39,7 +39,7 @@ struct Spring {
 // Linear drag on one body at its COM: F = −linear · v, τ = −angular · ω (a velocity-dependent
 // force, 000_* "Particle system"). Coefficients in N s/m and N m s, >= 0.
 struct Drag {
-  std::size_t body = no_body;
+  BodyId body;
   double linear = 0.0;
   double angular = 0.0;
 };
@@ -49,17 +49,19 @@ struct Drag {
 std::string spring_problem(const Spring& s);
 std::string drag_problem(const Drag& d);
 
+// The functions below take the bodies the spring's ids name (the world resolves them once per
+// step): `a`, and `b` or nullptr for a world anchor.
 // World positions of the two ends of the spring (m).
-Vec3 spring_end_a(const std::vector<Body>& bodies, const Spring& s);
-Vec3 spring_end_b(const std::vector<Body>& bodies, const Spring& s);
+Vec3 spring_end_a(const Body& a, const Spring& s);
+Vec3 spring_end_b(const Body* b, const Spring& s);
 // The force on body a (N, world); the force on b is its opposite.
-Vec3 spring_force(const std::vector<Body>& bodies, const Spring& s);
+Vec3 spring_force(const Body& a, const Body* b, const Spring& s);
 // Adds the spring force to both bodies at their attachment points.
-void apply_spring(std::vector<Body>& bodies, const Spring& s);
+void apply_spring(Body& a, Body* b, const Spring& s);
 // Elastic energy ½ k (L − L₀)² (J).
-double spring_potential_energy(const std::vector<Body>& bodies, const Spring& s);
+double spring_potential_energy(const Body& a, const Body* b, const Spring& s);
 
-void apply_drag(std::vector<Body>& bodies, const Drag& d);
+void apply_drag(Body& body, const Drag& d);
 
 // Weight m g (N) of a dynamic body, zero for a static one; g in m/s².
 inline Vec3 gravity_force(const Body& b, const Vec3& gravity) {

@@ -329,4 +329,175 @@ std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, d
   return all_finite;
 }
 
+// ---- the staged step ---------------------------------------------------------------------------
+
+namespace {
+
+template <bool semi_implicit, GyroscopicTerm gyroscopic>
+void euler_family_velocities(std::vector<Body>& bodies, const Vec3& gravity, double h,
+                             SolverBody* solver, Acceleration* acceleration, StageWorkspace& ws) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    SolverBody& s = solver[i];
+    if (b.inverse_mass == 0.0) {
+      s = SolverBody{};
+      acceleration[i] = Acceleration{};
+      ws.lead[i] = ws.angular_lead[i] = Vec3::Zero();
+      continue;
+    }
+    const Mat3 r = b.orientation.toRotationMatrix();
+    const Vec3 a = b.inverse_mass * b.force + gravity;
+    Vec3 omega;
+    if constexpr (gyroscopic == GyroscopicTerm::conserving) {
+      ws.turns[i] = free_rotation(b, h);
+      omega = ws.turns[i].angular_velocity;
+    } else {
+      omega = angular_velocity_update<gyroscopic>(b, r, h);
+    }
+    s.inverse_mass = b.inverse_mass;
+    s.inverse_inertia = r * b.inverse_inertia * r.transpose();
+    s.delta_position = s.delta_rotation = Vec3::Zero();
+    acceleration[i].linear = a;
+    acceleration[i].angular = (omega - b.angular_velocity) / h;
+    // The conserving rotation is the same under both (engine/free_rotation.hpp): its ω is
+    // the velocity the orientation turns with.
+    constexpr bool new_omega = semi_implicit || gyroscopic == GyroscopicTerm::conserving;
+    s.velocity = semi_implicit ? Vec3(b.velocity + h * a) : b.velocity;
+    s.angular_velocity = new_omega ? omega : b.angular_velocity;
+    ws.lead[i] = semi_implicit ? Vec3::Zero() : Vec3(h * a);
+    ws.angular_lead[i] = new_omega ? Vec3::Zero() : Vec3(omega - b.angular_velocity);
+    b.force = Vec3::Zero();
+    b.torque = Vec3::Zero();
+  }
+}
+
+template <bool semi_implicit>
+void euler_family_velocities(GyroscopicTerm gyroscopic, std::vector<Body>& bodies,
+                             const Vec3& gravity, double h, SolverBody* solver,
+                             Acceleration* acceleration, StageWorkspace& ws) {
+  switch (gyroscopic) {
+    case GyroscopicTerm::conserving:
+      ws.turns.resize(bodies.size());
+      return euler_family_velocities<semi_implicit, GyroscopicTerm::conserving>(
+          bodies, gravity, h, solver, acceleration, ws);
+    case GyroscopicTerm::implicit:
+      return euler_family_velocities<semi_implicit, GyroscopicTerm::implicit>(
+          bodies, gravity, h, solver, acceleration, ws);
+    case GyroscopicTerm::explicit_:
+      return euler_family_velocities<semi_implicit, GyroscopicTerm::explicit_>(
+          bodies, gravity, h, solver, acceleration, ws);
+    case GyroscopicTerm::off:
+      break;
+  }
+  euler_family_velocities<semi_implicit, GyroscopicTerm::off>(bodies, gravity, h, solver,
+                                                              acceleration, ws);
+}
+
+// RK4's prediction of the mean velocity of the step, for a constant acceleration: the applied
+// forces before the step and gravity, and the full Euler equations for the rotation.
+void rk4_velocities(const std::vector<Body>& bodies, const Vec3& gravity, double h,
+                    SolverBody* solver, Acceleration* acceleration, StageWorkspace& ws) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    SolverBody& s = solver[i];
+    if (b.inverse_mass == 0.0) {
+      s = SolverBody{};
+      acceleration[i] = Acceleration{};
+      ws.free_velocity[i] = ws.free_angular_velocity[i] = Vec3::Zero();
+      continue;
+    }
+    const Mat3 r = b.orientation.toRotationMatrix();
+    s.inverse_mass = b.inverse_mass;
+    s.inverse_inertia = r * b.inverse_inertia * r.transpose();
+    s.delta_position = s.delta_rotation = Vec3::Zero();
+    const Vec3 omega_body = r.transpose() * b.angular_velocity;
+    acceleration[i].linear = b.inverse_mass * b.force + gravity;
+    acceleration[i].angular =
+        r * (b.inverse_inertia *
+             (r.transpose() * b.torque - omega_body.cross(b.inertia * omega_body)));
+    s.velocity = b.velocity + 0.5 * h * acceleration[i].linear;
+    s.angular_velocity = b.angular_velocity + 0.5 * h * acceleration[i].angular;
+    ws.free_velocity[i] = s.velocity;
+    ws.free_angular_velocity[i] = s.angular_velocity;
+  }
+}
+
+}  // namespace
+
+void velocity_stage(Integrator integrator, GyroscopicTerm gyroscopic, std::vector<Body>& bodies,
+                    const Vec3& gravity, double h, SolverBody* solver,
+                    Acceleration* acceleration, StageWorkspace& ws) {
+  const std::size_t n = bodies.size();
+  ws.lead.resize(n);
+  ws.angular_lead.resize(n);
+  switch (integrator) {
+    case Integrator::euler:
+      return euler_family_velocities<false>(gyroscopic, bodies, gravity, h, solver, acceleration,
+                                            ws);
+    case Integrator::semi_implicit:
+      return euler_family_velocities<true>(gyroscopic, bodies, gravity, h, solver, acceleration,
+                                           ws);
+    case Integrator::rk4:
+      break;
+  }
+  ws.free_velocity.resize(n);
+  ws.free_angular_velocity.resize(n);
+  rk4_velocities(bodies, gravity, h, solver, acceleration, ws);
+}
+
+std::size_t position_stage(Integrator integrator, GyroscopicTerm gyroscopic,
+                           std::vector<Body>& bodies, const Vec3& gravity, double t, double h,
+                           const SolverBody* solver, const SolverBody* push, StageWorkspace& ws,
+                           Rk4Workspace& rk4,
+                           const std::function<void(double t)>& evaluate_forces) {
+  const std::size_t n = bodies.size();
+  if (integrator != Integrator::rk4) {
+    const bool conserving = gyroscopic == GyroscopicTerm::conserving;
+    double probe = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      Body& b = bodies[i];
+      if (b.inverse_mass == 0.0) continue;
+      b.position += h * (solver[i].velocity + push[i].velocity);
+      const Vec3 omega = solver[i].angular_velocity + push[i].angular_velocity;
+      b.orientation = conserving ? finish_rotation(b.orientation, ws.turns[i], omega, h)
+                                 : exact_rotation(b.orientation, omega, h);
+      probe += 0.0 * (b.position.sum() + b.orientation.coeffs().sum());
+    }
+    return probe == 0.0 ? all_finite : first_non_finite(bodies);
+  }
+  // RK4 from the state the solver's impulses (and pushes) changed at the start of the step.
+  for (std::size_t i = 0; i < n; ++i) {
+    Body& b = bodies[i];
+    if (b.inverse_mass == 0.0) continue;
+    b.velocity += solver[i].velocity + push[i].velocity - ws.free_velocity[i];
+    b.angular_velocity +=
+        solver[i].angular_velocity + push[i].angular_velocity - ws.free_angular_velocity[i];
+  }
+  const std::size_t bad = rk4_step(bodies, gravity, t, h, rk4, evaluate_forces);
+  if (bad != all_finite) return bad;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies[i].inverse_mass == 0.0) {
+      ws.lead[i] = ws.angular_lead[i] = Vec3::Zero();
+      continue;
+    }
+    ws.lead[i] = bodies[i].velocity - solver[i].velocity - push[i].velocity;
+    ws.angular_lead[i] =
+        bodies[i].angular_velocity - solver[i].angular_velocity - push[i].angular_velocity;
+  }
+  return all_finite;
+}
+
+std::size_t finish_stage(std::vector<Body>& bodies, const SolverBody* solver,
+                         const StageWorkspace& ws) {
+  double probe = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Body& b = bodies[i];
+    if (b.inverse_mass == 0.0) continue;
+    b.velocity = solver[i].velocity + ws.lead[i];
+    b.angular_velocity = solver[i].angular_velocity + ws.angular_lead[i];
+    probe += 0.0 * (b.velocity.sum() + b.angular_velocity.sum());
+  }
+  return probe == 0.0 ? all_finite : first_non_finite(bodies);
+}
+
 }  // namespace rigidlab

@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "engine/body.hpp"
+#include "engine/constraint_row.hpp"
+#include "engine/free_rotation.hpp"
 
 namespace rigidlab {
 
@@ -127,5 +129,51 @@ struct Rk4Workspace {
 std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, double dt,
                      Rk4Workspace& workspace, const std::function<void(double t)>& evaluate_forces,
                      BodyState* save_to = nullptr);
+
+// ---- the staged step ---------------------------------------------------------------------------
+//
+// With constraints in the world (contacts, joints) each integrator runs as stages of the one
+// step pipeline of engine/world.cpp (docs/architecture.md), document 000 "Sequential
+// impulses": 1. integrate the applied forces into the velocities the positions will move with,
+// 2. the constraint solver changes them, 3. the positions move with the solved velocities.
+// Every integrator here moves positions by x' = x + h u over a substep, for some velocity u:
+//   semi_implicit  u = v + h a (the new velocity),            end velocity v' = u
+//   euler          u = v (the old velocity),                    v' = u + h a
+//   rk4            u = v + h a/2 (the mean velocity for a constant a: x' = x + h v + h²a/2);
+//                  the impulses are applied at the start and the four stages (force callbacks
+//                  at each) run from the changed state.
+// The solver works on u only; it never asks which integrator runs. What an integrator adds to
+// the solved u to get the end-of-step velocity (h a for euler) is its `lead`, kept here. A
+// body no constraint touches is integrated exactly as by the functions above.
+
+// What the velocity stage leaves for the position and finish stages, per body (sized by the
+// velocity stage; allocates only when the number of bodies grows).
+struct StageWorkspace {
+  std::vector<Vec3> lead, angular_lead;  // end velocity − u of the free motion (m/s, rad/s)
+  // gyroscopic = conserving: each body's free rotation of the step (engine/free_rotation.hpp),
+  // applied exactly by the position stage when no constraint changed ω.
+  std::vector<FreeRotation> turns;
+  std::vector<Vec3> free_velocity, free_angular_velocity;  // rk4: u before the solve
+};
+
+// Stage 1 over all bodies: the solver bodies (u, ω, world inverse inertia, inverse mass; static
+// bodies get zeros) and the free accelerations. The Euler family consumes the force and torque
+// accumulators; rk4 keeps them for its stages.
+void velocity_stage(Integrator integrator, GyroscopicTerm gyroscopic, std::vector<Body>& bodies,
+                    const Vec3& gravity, double h, SolverBody* solver,
+                    Acceleration* acceleration, StageWorkspace& ws);
+// Stage 3: moves every body with its solved u and ω plus the solver's push velocities, which
+// move positions only (engine/solver.hpp; rk4: its four stages from v + Δu + u_push, Δu the
+// solver's change, with evaluate_forces at each stage as rk4_step). Returns the index of the
+// first body whose new state is not finite, or all_finite.
+std::size_t position_stage(Integrator integrator, GyroscopicTerm gyroscopic,
+                           std::vector<Body>& bodies, const Vec3& gravity, double t, double h,
+                           const SolverBody* solver, const SolverBody* push, StageWorkspace& ws,
+                           Rk4Workspace& rk4,
+                           const std::function<void(double t)>& evaluate_forces);
+// After relax and restitution changed u: the end-of-step velocities, solved u + lead. Returns
+// the first body whose velocities are not finite, or all_finite.
+std::size_t finish_stage(std::vector<Body>& bodies, const SolverBody* solver,
+                         const StageWorkspace& ws);
 
 }  // namespace rigidlab

@@ -7,47 +7,7 @@
 
 namespace rigidlab {
 
-// ---- BodyStore ------------------------------------------------------------------------------
-
-BodyStore::Id BodyStore::insert(const Body& b) {
-  Id id;
-  if (!free_ids_.empty()) {
-    id = free_ids_.back();
-    free_ids_.pop_back();
-  } else {
-    id = static_cast<Id>(index_of_.size());
-    index_of_.push_back(npos);
-  }
-  index_of_[id] = static_cast<std::uint32_t>(bodies_.size());
-  bodies_.push_back(b);
-  ids_.push_back(id);
-  return id;
-}
-
-Body BodyStore::erase(Id id) {
-  const std::size_t index = index_of_[id];
-  Body b = bodies_[index];
-  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
-  ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(index));
-  for (std::size_t i = index; i < ids_.size(); ++i) index_of_[ids_[i]] = static_cast<std::uint32_t>(i);
-  index_of_[id] = npos;
-  free_ids_.push_back(id);
-  return b;
-}
-
-// ---- World ----------------------------------------------------------------------------------
-
 namespace {
-
-// The velocities that move the positions in each integrator's step (engine/contact_solver.hpp).
-ContactVelocities contact_velocities(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::euler: return ContactVelocities::current;
-    case Integrator::semi_implicit: return ContactVelocities::after_forces;
-    case Integrator::rk4: break;
-  }
-  return ContactVelocities::mid_step;
-}
 
 void require_not_stepping(const World& w, const char* what) {
   if (w.stepping())
@@ -57,31 +17,24 @@ void require_not_stepping(const World& w, const char* what) {
 
 }  // namespace
 
-// Marks the world as stepping; unless commit() is called, the destructor (reached by a normal
-// return or by any exception, a Lua error included) puts the bodies back as in the snapshot
-// and the time back. RAII rather than catch-and-rethrow, so nothing is swallowed. The snapshot
-// is taken here when `take_snapshot`, otherwise the first integrator pass writes it (no force
-// element can run, and throw, before that pass) and the world calls snapshot_taken().
+// Marks the world as stepping for one step; unless commit() is called, the destructor (reached
+// by a normal return or by any exception, a Lua error included) puts the bodies, the time and
+// the solver's memory back as they were before the step. RAII rather than catch-and-rethrow,
+// so nothing is swallowed. The bodies' snapshot is taken here when `take_snapshot`, otherwise
+// the first integrator pass writes it (no force element can run, and throw, before that pass)
+// and the world calls snapshot_taken().
 class World::StepGuard {
  public:
   StepGuard(World& w, bool take_snapshot) : world_(w), time_(w.time_) {
     world_.store_->stepping_ = true;
-    world_.contacts_.save();
-    world_.snapshot_.resize(world_.bodies().size());
-    if (!take_snapshot) return;
-    const std::vector<Body>& bodies = world_.bodies();
-    for (std::size_t i = 0; i < bodies.size(); ++i) world_.snapshot_[i] = state_of(bodies[i]);
-    has_snapshot_ = true;
+    world_.save_step(take_snapshot);
+    has_snapshot_ = take_snapshot;
   }
   ~StepGuard() {
     world_.store_->stepping_ = false;
-    world_.contacts_.poll = nullptr;
     if (committed_) return;
     world_.time_ = time_;
-    world_.contacts_.restore();
-    if (!has_snapshot_) return;
-    std::vector<Body>& bodies = world_.bodies();
-    for (std::size_t i = 0; i < bodies.size(); ++i) set_state(bodies[i], world_.snapshot_[i]);
+    if (has_snapshot_) world_.restore_step();
   }
   StepGuard(const StepGuard&) = delete;
   StepGuard& operator=(const StepGuard&) = delete;
@@ -104,9 +57,16 @@ World::World()
 
 World::~World() { store_->world_ = nullptr; }
 
+// ---- settings ----------------------------------------------------------------------------------
+
 void World::set_gravity(const Vec3& g) {
   if (!is_finite(g)) throw std::invalid_argument("gravity must be finite");
   gravity_ = g;
+}
+
+void World::set_solver(SolverKind kind) {
+  require_not_stepping(*this, "change the solver");
+  solver_.kind = kind;
 }
 
 void World::set_substeps(int n) {
@@ -116,36 +76,41 @@ void World::set_substeps(int n) {
   substeps_ = n;
 }
 
-BodyStore::Id World::add(const Body& b) {
+void World::set_contact_settings(const ContactSettings& s) {
+  require_not_stepping(*this, "change the contact settings");
+  const std::string problem = contact_settings_problem(s);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  solver_.settings = s;
+}
+
+// ---- bodies and what is attached to them ---------------------------------------------------
+
+BodyId World::add(const Body& b) {
   require_not_stepping(*this, "add a body");
   if (!state_is_finite(b) || !is_finite(b.force) || !is_finite(b.torque))
     throw std::invalid_argument("the body's state must be finite");
+  const BodyId id = store_->insert(b);
   if (b.shape.kind != ShapeKind::none) ++shaped_bodies_;
-  return store_->insert(b);
+  return id;
 }
 
-Body World::remove(BodyStore::Id id) {
+// Nothing is renumbered: what stays attached to other bodies keeps their ids.
+Body World::remove(BodyId id) {
   require_not_stepping(*this, "remove a body");
-  const std::size_t index = store_->index_of(id);
-  auto renumber = [index](std::size_t& i) {
-    if (i != no_body && i > index) --i;
-  };
-  std::vector<Spring> springs;
-  for (Spring s : springs_) {
-    if (s.a == index || s.b == index) continue;
-    renumber(s.a);
-    renumber(s.b);
-    springs.push_back(s);
-  }
-  springs_.swap(springs);
-  std::vector<Drag> drags;
-  for (Drag d : drags_) {
-    if (d.body == index) continue;
-    renumber(d.body);
-    drags.push_back(d);
-  }
-  drags_.swap(drags);
-  contacts_.body_removed(index);
+  if (!store_->contains(id)) throw std::invalid_argument("the body is not in this world");
+  auto attached = [id](BodyId a, BodyId b) { return a == id || b == id; };
+  springs_.erase(std::remove_if(springs_.begin(), springs_.end(),
+                                [&](const Spring& s) { return attached(s.a, s.b); }),
+                 springs_.end());
+  drags_.erase(std::remove_if(drags_.begin(), drags_.end(),
+                              [&](const Drag& d) { return d.body == id; }),
+               drags_.end());
+  joints_.erase(std::remove_if(joints_.begin(), joints_.end(),
+                               [&](const std::unique_ptr<Constraint>& j) {
+                                 return attached(j->body_a(), j->body_b());
+                               }),
+                joints_.end());
+  solver_.contact_constraints().body_removed(id);
   if (store_->get(id).shape.kind != ShapeKind::none) --shaped_bodies_;
   return store_->erase(id);
 }
@@ -157,17 +122,9 @@ std::size_t World::add_plane(const Plane& p) {
   return planes_.size() - 1;
 }
 
-void World::set_contact_settings(const ContactSettings& s) {
-  require_not_stepping(*this, "change the contact settings");
-  const std::string problem = contact_settings_problem(s);
-  if (!problem.empty()) throw std::invalid_argument(problem);
-  contacts_.settings = s;
-}
-
 void World::add_spring(const Spring& s) {
   require_not_stepping(*this, "add a spring");
-  const std::size_t n = bodies().size();
-  if (s.a >= n || (s.b != no_body && s.b >= n))
+  if (!store_->contains(s.a) || (s.b.valid() && !store_->contains(s.b)))
     throw std::invalid_argument("spring attached to a body that is not in this world");
   const std::string problem = spring_problem(s);
   if (!problem.empty()) throw std::invalid_argument(problem);
@@ -176,7 +133,7 @@ void World::add_spring(const Spring& s) {
 
 void World::add_drag(const Drag& d) {
   require_not_stepping(*this, "add drag");
-  if (d.body >= bodies().size())
+  if (!store_->contains(d.body))
     throw std::invalid_argument("drag on a body that is not in this world");
   const std::string problem = drag_problem(d);
   if (!problem.empty()) throw std::invalid_argument(problem);
@@ -189,8 +146,42 @@ void World::add_force(ForceCallback callback) {
   callbacks_.push_back(std::move(callback));
 }
 
+Constraint& World::add_constraint(std::unique_ptr<Constraint> joint) {
+  require_not_stepping(*this, "add a joint");
+  if (!joint) throw std::invalid_argument("the joint is empty");
+  if (!store_->contains(joint->body_a()) ||
+      (joint->body_b().valid() && !store_->contains(joint->body_b())))
+    throw std::invalid_argument("joint attached to a body that is not in this world");
+  if (joint->body_a() == joint->body_b())
+    throw std::invalid_argument("a joint needs two different bodies");
+  if (joint->row_count() < 0) throw std::invalid_argument("a joint has no negative row count");
+  joints_.push_back(std::move(joint));
+  return *joints_.back();
+}
+
+void World::remove_constraint(const Constraint& joint) {
+  require_not_stepping(*this, "remove a joint");
+  const auto it = std::find_if(joints_.begin(), joints_.end(),
+                               [&](const std::unique_ptr<Constraint>& j) { return j.get() == &joint; });
+  if (it == joints_.end()) throw std::invalid_argument("the joint is not in this world");
+  joints_.erase(it);
+}
+
 bool World::has_force_elements() const {
   return !springs_.empty() || !drags_.empty() || !callbacks_.empty();
+}
+
+// Ids to indices, once per call of step(): bodies are neither added nor removed during it.
+void World::resolve_ids() {
+  const BodyStore& store = *store_;
+  auto index = [&store](BodyId id) { return id.valid() ? store.index_of(id) : no_body; };
+  spring_refs_.clear();
+  for (const Spring& s : springs_) spring_refs_.push_back({index(s.a), index(s.b)});
+  drag_refs_.clear();
+  for (const Drag& d : drags_) drag_refs_.push_back(index(d.body));
+  joint_refs_.clear();
+  for (const auto& j : joints_)
+    joint_refs_.push_back({j.get(), index(j->body_a()), index(j->body_b())});
 }
 
 // 000_* "Particle system": at each evaluation sum every force acting on each body. The
@@ -198,39 +189,86 @@ bool World::has_force_elements() const {
 void World::evaluate_forces(double t) {
   time_ = t;
   std::vector<Body>& b = bodies();
-  for (const Spring& s : springs_) apply_spring(b, s);
-  for (const Drag& d : drags_) apply_drag(b, d);
+  for (std::size_t i = 0; i < springs_.size(); ++i) {
+    const SpringRef& r = spring_refs_[i];
+    apply_spring(b[r.a], r.b == no_body ? nullptr : &b[r.b], springs_[i]);
+  }
+  for (std::size_t i = 0; i < drags_.size(); ++i) apply_drag(b[drag_refs_[i]], drags_[i]);
   // By index: a callback cannot add callbacks (add_force refuses during a step), but a
   // reference into the vector must not be held across a call that might throw.
   for (std::size_t i = 0; i < callbacks_.size(); ++i) callbacks_[i](*this, t);
 }
 
-// One substep from t to t + dt with the chosen integrator (STYLE.md 7: a switch on the enum),
-// and the contact step around it (engine/contact_solver.hpp): contact impulses on the
-// velocities that will move the positions, the integrator, then position correction.
-std::size_t World::integrate(double t, double dt, BodyState* save_to) {
-  // RK4 evaluates the force elements at each of its stages; the Euler methods once, first.
+// ---- the step pipeline (docs/architecture.md) -----------------------------------------------------
+
+// A substep without constraints: each integrator in one pass over the bodies (STYLE.md 7: a
+// switch on the enum), writing the undo snapshot on the way when asked.
+std::size_t World::free_substep(double t, double h, BodyState* save_to) {
   if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
-  const bool contacts = has_contacts();
-  if (contacts)
-    contacts_.solve_velocities(bodies(), planes_, gravity_, dt, contact_velocities(integrator_));
-  std::size_t bad = all_finite;
   switch (integrator_) {
     case Integrator::euler:
-      bad = euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
-      break;
+      return euler_step(bodies(), gravity_, gyroscopic_, h, save_to);
     case Integrator::semi_implicit:
-      bad = semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, dt, save_to);
+      return semi_implicit_euler_step(bodies(), gravity_, gyroscopic_, h, save_to);
+    case Integrator::rk4:
       break;
-    case Integrator::rk4: {
-      static const std::function<void(double)> no_forces;
-      bad = rk4_step(bodies(), gravity_, t, dt, rk4_,
-                     has_force_elements() ? stage_forces_ : no_forces, save_to);
-      break;
-    }
   }
-  if (contacts && bad == all_finite) bad = contacts_.correct_positions(bodies());
-  return bad;
+  static const std::function<void(double)> no_forces;
+  return rk4_step(bodies(), gravity_, t, h, rk4_, has_force_elements() ? stage_forces_ : no_forces,
+                  save_to);
+}
+
+// One substep of the pipeline (000_* "Sequential impulses": forces into tentative velocities,
+// impulses, positions from the new velocities), each stage in its file:
+//   1 forces (Euler family; RK4 at its stages)        engine/forces.cpp, callbacks
+//   2 velocity stage of the integrator                engine/integrators.cpp
+//   3 prepare: contacts found, joint rows built       engine/solver.cpp, contact_finder.cpp
+//   4 warm start, 5 solve                             engine/solver.cpp, contact_constraints.cpp
+//   6 position stage of the integrator                engine/integrators.cpp
+//   7 relax (soft_step), 8 restitution                engine/solver.cpp, contact_restitution.cpp
+//   9 position correction (sequential_impulses)       engine/contact_positions.cpp
+//  10 store impulses, 11 end-of-step velocities       engine/solver.cpp, integrators.cpp
+std::size_t World::substep(double t, double h, BodyState* save_to) {
+  if (!has_constraints()) return free_substep(t, h, save_to);
+  if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
+  std::vector<Body>& bodies = this->bodies();
+  solver_.begin(bodies.size());
+  velocity_stage(integrator_, gyroscopic_, bodies, gravity_, h, solver_.bodies(),
+                 solver_.accelerations(), stages_);
+  solver_.prepare(bodies, store_->ids(), planes_, joint_refs_, h);
+  solver_.warm_start();
+  solver_.solve();
+  solver_.integrate_positions();
+  static const std::function<void(double)> no_forces;
+  std::size_t bad =
+      position_stage(integrator_, gyroscopic_, bodies, gravity_, t, h, solver_.bodies(),
+                     solver_.pushes(), stages_, rk4_,
+                     has_force_elements() ? stage_forces_ : no_forces);
+  if (bad != all_finite) return bad;
+  solver_.relax();
+  solver_.restitution();
+  bad = solver_.correct_positions(bodies);
+  solver_.store();
+  const std::size_t finish = finish_stage(bodies, solver_.bodies(), stages_);
+  return std::min(bad, finish);
+}
+
+// The undo of one step: the bodies' states (unless the first integrator pass writes them),
+// the solver's memory and the joints' impulses.
+void World::save_step(bool with_bodies) {
+  const std::vector<Body>& b = bodies();
+  snapshot_.resize(b.size());
+  if (with_bodies)
+    for (std::size_t i = 0; i < b.size(); ++i) snapshot_[i] = state_of(b[i]);
+  solver_.save(undo_.contacts, undo_.last_substep);
+  Solver::save_impulses(joints_, undo_.joint_impulses);
+}
+
+void World::restore_step() {
+  std::vector<Body>& b = bodies();
+  for (std::size_t i = 0; i < b.size(); ++i) set_state(b[i], snapshot_[i]);
+  solver_.restore(undo_.contacts, undo_.last_substep);
+  Solver::restore_impulses(joints_, undo_.joint_impulses);
 }
 
 void World::step(double dt, long count, const std::function<void()>& poll) {
@@ -238,18 +276,23 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
     throw std::invalid_argument("dt must be finite and > 0, got " + format_number(dt));
   if (count < 1) throw std::invalid_argument("the number of steps must be >= 1");
   require_not_stepping(*this, "step the world");
-  // With force elements, forces are evaluated (and callbacks may throw) before the first
-  // integrator pass, and contact impulses change velocities before it, so the snapshot comes
-  // first; without either, that pass writes it.
-  const bool snapshot_in_pass = !has_force_elements() && !has_contacts();
-  StepGuard guard(*this, !snapshot_in_pass);
+  steps_completed_ = 0;
+  resolve_ids();
   StepPoll poller(poll);
-  contacts_.poll = &poller;  // reset by the guard
-  const double call_start = time_;
+  solver_.poll = &poller;
+  struct ClearPoll {
+    Solver& solver;
+    ~ClearPoll() { solver.poll = nullptr; }
+  } clear_poll{solver_};
+  // Without force elements or constraints the first integrator pass writes the snapshot;
+  // otherwise forces are evaluated (and callbacks may throw) or impulses change velocities
+  // before it, so the snapshot comes first.
+  const bool snapshot_in_pass = !has_force_elements() && !has_constraints();
   const double h = dt / substeps_;
   std::vector<Body>& bodies = this->bodies();
-  double t = call_start;
   for (long k = 0; k < count; ++k) {
+    StepGuard guard(*this, !snapshot_in_pass);
+    const double t = time_;
     for (int s = 0; s < substeps_; ++s) {
       // The integrators consume the accumulators; forces applied before the call act during
       // every substep of the first step.
@@ -259,18 +302,17 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
           bodies[i].torque = snapshot_[i].torque;
         }
       }
-      const bool first_pass = k == 0 && s == 0;
-      const std::size_t bad =
-          integrate(t + s * h, h, first_pass && snapshot_in_pass ? snapshot_.data() : nullptr);
-      if (first_pass && snapshot_in_pass) guard.snapshot_taken();
-      if (bad != all_finite) throw_non_finite(bad, t, t + dt, call_start);
+      const bool first_pass = s == 0 && snapshot_in_pass;
+      const std::size_t bad = substep(t + s * h, h, first_pass ? snapshot_.data() : nullptr);
+      if (first_pass) guard.snapshot_taken();
+      if (bad != all_finite) throw_non_finite(bad, t, t + dt, count);
       poller.tick(bodies.size() + 1);
     }
-    t += dt;
-    time_ = t;
+    time_ = t + dt;
+    guard.commit();
+    ++steps_completed_;
     for (const std::shared_ptr<StepObserver>& o : observers_) o->after_step(*this);
   }
-  guard.commit();
 }
 
 void World::add_step_observer(std::shared_ptr<StepObserver> observer) {
@@ -285,20 +327,56 @@ void World::remove_step_observer(const StepObserver* observer) {
                    observers_.end());
 }
 
-void World::throw_non_finite(std::size_t index, double t0, double t1, double call_start) const {
+void World::throw_non_finite(std::size_t index, double t0, double t1, long count) const {
   const Body& b = bodies()[index];
   // Rates first: a non-finite velocity makes the position non-finite too.
   const char* what = !is_finite(b.velocity)           ? "velocity"
                      : !is_finite(b.angular_velocity) ? "angular velocity"
                      : !is_finite(b.position)         ? "position"
                                                       : "orientation";
-  throw StepError("body " + std::to_string(index + 1) + " of " +
-                      std::to_string(bodies().size()) + " would get a non-finite " + what +
-                      " in the step from t = " + format_number(t0) + " s to t = " + format_number(t1) +
-                      " s; nothing was changed (the world is still at t = " +
-                      format_number(call_start) + " s)",
-                  index, t0);
+  std::string message = "body " + std::to_string(index + 1) + " of " +
+                        std::to_string(bodies().size()) + " would get a non-finite " + what +
+                        " in the step from t = " + format_number(t0) +
+                        " s to t = " + format_number(t1) + " s; ";
+  if (count == 1)
+    message += "nothing was changed (the world is still at t = " + format_number(t0) + " s)";
+  else
+    message += "that step was undone: " + std::to_string(steps_completed_) + " of " +
+               std::to_string(count) + " steps completed (the world is at t = " +
+               format_number(t0) + " s)";
+  throw StepError(message, index, t0);
 }
+
+// ---- saved states ----------------------------------------------------------------------------------
+
+void World::save_state(WorldState& to) const {
+  require_not_stepping(*this, "save the state");
+  to.ids = store_->ids();
+  to.bodies = bodies();
+  to.time = time_;
+  solver_.save(to.contacts, to.last_substep);
+  Solver::save_impulses(joints_, to.joint_impulses);
+}
+
+void World::restore_state(const WorldState& from) {
+  require_not_stepping(*this, "restore a state");
+  if (from.ids != store_->ids())
+    throw std::invalid_argument("the state was saved with other bodies than the world has now");
+  // The flattened impulses hold each joint's row count, then its impulses.
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < joints_.size() && next <= from.joint_impulses.size(); ++k)
+    next = next < from.joint_impulses.size()
+               ? next + 1 + static_cast<std::size_t>(from.joint_impulses[next])
+               : from.joint_impulses.size() + 1;
+  if (next != from.joint_impulses.size())
+    throw std::invalid_argument("the state was saved with other joints than the world has now");
+  bodies() = from.bodies;
+  time_ = from.time;
+  solver_.restore(from.contacts, from.last_substep);
+  Solver::restore_impulses(joints_, from.joint_impulses);
+}
+
+// ---- totals ------------------------------------------------------------------------------------
 
 double World::kinetic_energy() const {
   double sum = 0.0;
@@ -309,7 +387,9 @@ double World::kinetic_energy() const {
 double World::potential_energy() const {
   double sum = 0.0;
   for (const Body& b : bodies()) sum += gravity_potential_energy(b, gravity_);
-  for (const Spring& s : springs_) sum += spring_potential_energy(bodies(), s);
+  const BodyStore& store = *store_;
+  for (const Spring& s : springs_)
+    sum += spring_potential_energy(store.get(s.a), s.b.valid() ? &store.get(s.b) : nullptr, s);
   return sum;
 }
 

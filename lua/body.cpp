@@ -515,7 +515,7 @@ BodyHandle& check_body_handle(lua_State* L, int arg) {
 }
 
 BodyHandle& push_new_body(lua_State* L, const Body& b) {
-  BodyHandle handle{std::make_shared<BodyStore>(), 0};
+  BodyHandle handle{std::make_shared<BodyStore>(), {}};
   handle.id = handle.store->insert(b);
   void* memory = lua_newuserdatauv(L, sizeof(BodyBox), 0);
   auto* box = new (memory) BodyBox{body_tag, std::move(handle)};  // moving cannot throw

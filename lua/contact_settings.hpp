@@ -1,4 +1,4 @@
-// The contact solver's settings (engine/contact_solver.hpp ContactSettings) as properties of
+// The contact solver's settings (engine/solver_settings.hpp ContactSettings) as properties of
 // the world: world{iterations = 20}, w.slop, w.baumgarte = 0.1. One table of the settings,
 // their ranges, units and help serves the constructor, the reads, the writes and help().
 #pragma once

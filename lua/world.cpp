@@ -229,7 +229,7 @@ int world_add(lua_State* L) {
   lua_getiuservalue(L, 1, bodies_slot);
   lua_pushvalue(L, 2);
   lua_rawseti(L, 3, n);  // may raise Lua's memory error: nothing has changed yet
-  BodyStore::Id id = 0;
+  BodyStore::Id id;
   if (const Failure failure = try_call([&] { id = w.world.add(handle.body()); })) {
     lua_pushnil(L);
     lua_rawseti(L, 3, n);  // frees nothing, allocates nothing

@@ -64,15 +64,15 @@ void push_fields(lua_State* L, std::initializer_list<const char*> names) {
   for (const char* name : names) get_field(L, 2, name);
 }
 
-// The body of field `name` (its value at stack `value`) in world w: its index, or no_body when
+// The body of field `name` (its value at stack `value`) in world w: its id, or no_body_id when
 // absent and not required.
-std::size_t field_member(lua_State* L, const LuaWorld& w, int value, const char* name,
-                         bool required) {
+BodyId field_member(lua_State* L, const LuaWorld& w, int value, const char* name,
+                    bool required) {
   if (lua_isnil(L, value)) {
     if (required) arg_error(L, 2, "field '%s' is required", name);
-    return no_body;
+    return no_body_id;
   }
-  return check_member(L, w, value, Where::field(2, name));
+  return w.world.store().id_at(check_member(L, w, value, Where::field(2, name)));
 }
 
 int world_add_spring(lua_State* L) {
@@ -96,10 +96,10 @@ int world_add_spring(lua_State* L) {
   s.a = field_member(L, w, 3, "a", true);
   s.b = field_member(L, w, 4, "b", false);
   const bool has_anchor = !lua_isnil(L, 5), has_b_point = !lua_isnil(L, 6);
-  if (s.b == no_body && !has_anchor)
+  if (!s.b.valid() && !has_anchor)
     arg_error(L, 2, "field 'b' (a body) or 'anchor' (a world point) is required");
-  if (s.b != no_body && has_anchor) arg_error(L, 2, "fields 'b' and 'anchor' exclude each other");
-  if (s.b == no_body && has_b_point) arg_error(L, 2, "field 'b_point' needs field 'b'");
+  if (s.b.valid() && has_anchor) arg_error(L, 2, "fields 'b' and 'anchor' exclude each other");
+  if (!s.b.valid() && has_b_point) arg_error(L, 2, "field 'b_point' needs field 'b'");
   if (s.a == s.b) arg_error(L, 2, "fields 'a' and 'b' must be different bodies");
   protect(L, 2, [&] { check_world(L, 1).world.add_spring(s); });
   return 0;
@@ -185,21 +185,22 @@ int world_planes(lua_State* L) {
 // a = nil, plane = its index) and b the body: the normal is the plane's, the impulses the
 // body's.
 int world_contacts(lua_State* L) {
-  const std::vector<ContactInfo> contacts = check_world(L, 1).world.contacts();
+  const World& world = check_world(L, 1).world;
+  const std::vector<ContactInfo> contacts = world.contacts();
   check_no_extra_args(L, 1);
   lua_newtable(L);
   lua_Integer n = 0;
   for (const ContactInfo& c : contacts) {
     if (!touched(c)) continue;
     lua_createtable(L, 0, 10);
-    if (c.a == no_body) {
+    if (!c.a.valid()) {
       lua_pushinteger(L, static_cast<lua_Integer>(c.plane) + 1);
       lua_setfield(L, -2, "plane");
     } else {
-      push_world_body(L, 1, c.a);
+      push_world_body(L, 1, world.store().index_of(c.a));
       lua_setfield(L, -2, "a");
     }
-    push_world_body(L, 1, c.b);
+    push_world_body(L, 1, world.store().index_of(c.b));
     lua_setfield(L, -2, "b");
     set_vec3_field(L, "point", c.point);
     set_vec3_field(L, "normal", c.normal);
@@ -239,11 +240,31 @@ int world_step(lua_State* L) {
     arg_error(L, 1, "the world is already stepping: a force callback cannot step its own world");
   lua_settop(L, 1);
   // The engine polls the stop check (Ctrl-C, a time limit) inside its long loops: a step of
-  // any size can be stopped, and is then undone.
+  // any size can be stopped, and that step is then undone (the ones before it are kept).
   const StopPoller stop(L);
   const std::function<void()> poll = [&stop] { stop.poll(); };
   RunningState running(w, L);
-  protect(L, [&] { w.world.step(dt, static_cast<long>(n), poll); });
+  Failure failure;  // the engine's own errors (lua/binding.hpp protect, spelt out)
+  try {
+    w.world.step(dt, static_cast<long>(n), poll);
+  } catch (const std::bad_alloc& e) {
+    failure.hold(e);
+  } catch (const std::exception& e) {
+    failure.hold(e);
+  } catch (...) {
+    // A Lua error from a force callback or the stop check unwinds through here as a C++
+    // exception (Lua built as C++), its message on top of this thread's stack (ldo.c
+    // luaD_throw): it gets the steps kept appended, then goes on. (The engine's own errors
+    // say so themselves.)
+    if (n > 1 && lua_type(L, -1) == LUA_TSTRING) {
+      lua_pushfstring(L, "%s (%I of %I steps completed; the world is at t = %s s)",
+                      lua_tostring(L, -1), static_cast<lua_Integer>(w.world.steps_completed()), n,
+                      format_number(w.world.time()).c_str());
+      lua_replace(L, -2);
+    }
+    throw;
+  }
+  if (failure) failure.raise(L);
   return 0;
 }
 
@@ -252,7 +273,7 @@ const Entry methods[] = {
      "fn(w, t) is called at every force evaluation (once per substep for the Euler methods,\n"
      "at each of the four stages of rk4, the bodies then holding the stage's state and\n"
      "w.time = t) and applies forces with b:apply_force / b:apply_torque. An error in fn\n"
-     "stops w:step and leaves the world as before the call."},
+     "stops w:step: the step it happened in is undone, the steps before it are kept."},
     {"add_spring", world_add_spring, "world:add_spring",
      "w:add_spring{a =, a_point =, b =, b_point =, anchor =, k =, damping =, rest_length =}",
      "A Hooke spring with a damper along its line, from a_point of body a (body coordinates,\n"
@@ -281,15 +302,18 @@ const Entry methods[] = {
      "point (m) is where the surfaces meet (midway between them); depth (m) is the overlap\n"
      "when the step began (negative: a gap the step closed). For a contact found ahead of\n"
      "an impact in the step, point and normal are those of the moment the bodies touch.\n"
-     "Contacts are solved by sequential impulses (Catto, GDC 2005) with `iterations` sweeps;\n"
+     "Contacts are solved by the world's solver (w.solver) with `iterations` sweeps;\n"
      "impacts faster than restitution_threshold bounce with the pair's restitution (see\n"
      "help(\"world\") for the solver's settings and limits)."},
     {"step", world_step, "world:step", "w:step(dt [, n])",
      "Advances the world by n steps (default 1) of dt seconds, each in `substeps` substeps,\n"
-     "with the world's integrator. Forces applied with b:apply_force before the call act\n"
-     "during the first step and are then cleared. If any body would get a non-finite state,\n"
-     "or a force callback raises an error, nothing is changed and the error names the body\n"
-     "(its index in w:bodies()) and the time. n is at most 100000000."},
+     "with the world's integrator and solver. Forces applied with b:apply_force before the\n"
+     "call act during the first step and are then cleared. If any body would get a\n"
+     "non-finite state, a force callback raises an error, or the run is stopped (Ctrl-C, a\n"
+     "limit), the step it happened in is undone and the steps before it are kept; the error\n"
+     "names the body (its index in w:bodies()) and the time, and says how many of the n\n"
+     "steps completed. The state a step leaves is the state at the end of the step: after an\n"
+     "impact, the velocities are the post-impact ones. n is at most 100000000."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace

@@ -41,7 +41,7 @@ double oscillator_error(Integrator integrator, double dt) {
   OneBody o(make_sphere_body(1.0, 0.1), integrator);
   o.body().position = Vec3(1, 0, 0);
   Spring s;
-  s.a = 0;
+  s.a = o.world.store().id_at(0);
   s.stiffness = 1.0;
   o.world.add_spring(s);
   const double duration = 2.0;

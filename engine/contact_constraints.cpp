@@ -1,0 +1,533 @@
+// The contact constraints, part 2: settings, warm starting, the sweeps (friction, normals one
+// by one or as a block) and the bookkeeping between steps. See engine/contact_constraints.hpp.
+#include "engine/contact_constraints.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/LU>
+
+#include "engine/contact_helpers.hpp"
+#include "engine/format.hpp"
+
+namespace rigidlab {
+
+using namespace contact_detail;
+
+std::optional<SolverKind> parse_solver(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(solver_names); ++i)
+    if (name == solver_names[i]) return static_cast<SolverKind>(i);
+  return std::nullopt;
+}
+
+std::string contact_settings_problem(const ContactSettings& s) {
+  const struct {
+    const char* name;
+    int value, min;
+  } counts[] = {{"iterations", s.iterations, 1},
+                {"relax_iterations", s.relax_iterations, 0},
+                {"position_iterations", s.position_iterations, 0}};
+  for (const auto& field : counts)
+    if (field.value < field.min || field.value > ContactSettings::max_iterations)
+      return std::string(field.name) + " must be an integer from " + std::to_string(field.min) +
+             " to " + std::to_string(ContactSettings::max_iterations) + ", got " +
+             std::to_string(field.value);
+  const struct {
+    const char* name;
+    double value;
+  } nonnegative[] = {{"restitution_threshold", s.restitution_threshold},
+                     {"linear_slop", s.linear_slop},
+                     {"max_correction", s.max_correction},
+                     {"speculative_distance", s.speculative_distance},
+                     {"match_distance", s.match_distance},
+                     {"contact_hertz", s.contact_hertz},
+                     {"contact_damping_ratio", s.contact_damping_ratio},
+                     {"joint_hertz", s.joint_hertz},
+                     {"joint_damping_ratio", s.joint_damping_ratio},
+                     {"contact_push_speed", s.contact_push_speed}};
+  for (const auto& field : nonnegative)
+    if (!std::isfinite(field.value) || !(field.value >= 0.0))
+      return std::string(field.name) + " must be finite and >= 0, got " +
+             format_number(field.value);
+  if (!(s.baumgarte >= 0.0 && s.baumgarte <= 1.0))
+    return "baumgarte must be in [0, 1], got " + format_number(s.baumgarte);
+  return "";
+}
+
+// ---- warm starting -----------------------------------------------------------------------------
+
+// The previous step's point that p continues: the same bodies (or plane) and feature, or else
+// the nearest point of the same pair within match_distance (features of clipped faces change
+// when a corner of one box lies exactly on a side of the other). nullptr when p is new.
+const ContactInfo* ContactConstraints::previous_point(const Manifold& m, const Point& p) const {
+  auto less = [](const ContactInfo& info, const auto& k) { return sort_key(info) < k; };
+  const auto key = sort_key(m.id_a, m.id_b, m.plane, p.feature);
+  const auto found = std::lower_bound(contacts_.begin(), contacts_.end(), key, less);
+  if (found != contacts_.end() && sort_key(*found) == key) return &*found;
+  const ContactInfo* nearest = nullptr;
+  double best = settings_->match_distance * settings_->match_distance;
+  for (auto it = std::lower_bound(contacts_.begin(), contacts_.end(),
+                                  sort_key(m.id_a, m.id_b, m.plane, 0), less);
+       it != contacts_.end() && it->a == m.id_a && it->b == m.id_b && it->plane == m.plane;
+       ++it) {
+    const double d2 = (it->point - p.point).squaredNorm();
+    if (d2 <= best) best = d2, nearest = &*it;
+  }
+  return nearest;
+}
+
+// Starts every point from the impulses its point ended the previous step's sweeps with. The
+// velocities before that are kept for the restitution stage.
+void ContactConstraints::warm_start(SolverBody* solver) {
+  solver_ = solver;
+  start_velocity_.resize(ground_ + 1);
+  start_angular_velocity_.resize(ground_ + 1);
+  for (std::size_t i = 0; i <= ground_; ++i) {
+    start_velocity_[i] = solver[i].velocity;
+    start_angular_velocity_[i] = solver[i].angular_velocity;
+  }
+  // Impulses scale with the step: a resting contact carries m g Δt.
+  const double scale = last_dt_ > 0.0 ? h_ / last_dt_ : 1.0;
+  for (Manifold& m : manifolds_) {
+    SolverBody& a = solver[m.a];
+    SolverBody& b = solver[m.b];
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      const ContactInfo* found = previous_point(m, p);
+      if (found == nullptr) continue;
+      p.normal.impulse = scale * found->sweep_impulse;
+      p.tangent1.impulse = scale * found->friction_impulse.dot(p.tangent1.jacobian.linear);
+      p.tangent2.impulse = scale * found->friction_impulse.dot(p.tangent2.jacobian.linear);
+      apply_row(p.normal, a, b, p.normal.impulse);
+      apply_row(p.tangent1, a, b, p.tangent1.impulse);
+      apply_row(p.tangent2, a, b, p.tangent2.impulse);
+    }
+  }
+}
+
+// See the header ("Lever arms after the positions moved").
+void ContactConstraints::positions_moved(SolverBody* solver) {
+  solver_ = solver;
+  const double tolerance = landed_tolerance();
+  for (std::size_t mi = 0; mi < manifolds_.size(); ++mi) {
+    Manifold& m = manifolds_[mi];
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      p.end_separation = current_separation(m, p);
+      p.relax_cap = p.end_separation <= tolerance ? unbounded : p.normal.impulse;
+    }
+    const SolverBody& a = solver[m.a];
+    const SolverBody& b = solver[m.b];
+    const Vec3 apart = b.delta_position - a.delta_position;
+    if (!(apart.squaredNorm() > tolerance * tolerance)) continue;
+    if (m.radius_a > 0.0 && m.radius_b > 0.0) {
+      turn_to_centres(m, apart);
+      continue;
+    }
+    const double w = a.inverse_mass / (a.inverse_mass + b.inverse_mass);
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      p.r_a += (1.0 - w) * apart;
+      p.r_b -= w * apart;
+      for (ConstraintRow* row : {&p.normal, &p.tangent1, &p.tangent2}) {
+        row->jacobian = point_jacobian(row->jacobian.linear, p.r_a, p.r_b);
+        prepare_row(*row, a, b);
+      }
+    }
+    prepare_block(mi);
+  }
+}
+
+// Two spheres (one point) that moved apart in the step: the impulses after the move (relax,
+// restitution) are taken at the end poses (see the header): the normal turned to the line of
+// the centres there, the arms along it through the centres (one point, midway between the
+// surfaces), and the impact velocity measured along it. The accumulated impulses keep their
+// world directions: the normal one goes on along the new normal, the friction impulse is
+// projected on the new tangents.
+void ContactConstraints::turn_to_centres(Manifold& m, const Vec3& apart) {
+  Point& p = points_[m.first];
+  const Vec3 centres = p.r_a - p.r_b + apart;  // x_b − x_a at the end (r_a − r_b at the start)
+  const double length = centres.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return;
+  const Vec3 friction = p.tangent1.impulse * p.tangent1.jacobian.linear +
+                        p.tangent2.impulse * p.tangent2.jacobian.linear;
+  m.normal = m.start_normal = centres / length;
+  const double from_a = m.radius_a + 0.5 * (length - m.radius_a - m.radius_b);
+  p.r_a = p.start_r_a = from_a * m.normal;
+  p.r_b = p.start_r_b = (from_a - length) * m.normal;
+  Vec3 t1 = p.tangent1.jacobian.linear - p.tangent1.jacobian.linear.dot(m.normal) * m.normal;
+  if (!(t1.norm() > 1e-9)) tangent_basis(m.normal, t1, t1);
+  t1.normalize();
+  const Vec3 t2 = m.normal.cross(t1);
+  p.normal.jacobian = point_jacobian(m.normal, p.r_a, p.r_b);
+  p.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
+  p.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
+  p.tangent1.impulse = friction.dot(t1);
+  p.tangent2.impulse = friction.dot(t2);
+  for (ConstraintRow* row : {&p.normal, &p.tangent1, &p.tangent2})
+    prepare_row(*row, solver_[m.a], solver_[m.b]);
+  p.turned = true;
+}
+
+// ---- the sweeps ----------------------------------------------------------------------------------
+
+// The gap of p now (Box2D v3 b2SolveContact, with the rotation linearised over the substep):
+// s₀ plus how far the bodies moved along the normal at the point.
+double ContactConstraints::current_separation(const Manifold& m, const Point& p) const {
+  const SolverBody& a = solver_[m.a];
+  const SolverBody& b = solver_[m.b];
+  const Vec3 moved = b.delta_position + b.delta_rotation.cross(p.r_b) - a.delta_position -
+                     a.delta_rotation.cross(p.r_a);
+  return p.separation + m.normal.dot(moved);
+}
+
+double& ContactConstraints::impulse_of(Point& p, Impulse which) {
+  switch (which) {
+    case Impulse::sweep: return p.normal.impulse;
+    case Impulse::round: return p.round_impulse;
+    case Impulse::push: break;
+  }
+  return p.push_impulse;
+}
+
+// The velocity bias of p's normal row (solve_row drives J v toward −bias) and its softness,
+// per mode (see NormalMode). False when the row is left alone.
+bool ContactConstraints::normal_bias(const Manifold& m, const Point& p, NormalMode mode,
+                                     double& bias, Softness& soft) const {
+  soft = rigid_softness;
+  bias = 0.0;
+  switch (mode) {
+    case NormalMode::velocity:  // before the positions move: a gap may close, no more
+      if (p.separation > 0.0) bias = p.separation / h_;
+      return true;
+    case NormalMode::push:  // within the landing tolerance counts as touching, so that the
+      // corners of a face resting flat (gaps of ±1e-16 m) all get the same soft row
+      if (p.separation > landed_tolerance()) return false;
+      soft = m.softness;
+      bias = std::max(soft.mass_scale * soft.bias_rate * p.separation,
+                      -settings_->contact_push_speed);
+      return true;
+    case NormalMode::relax:
+      // A point that had a gap at the start and touches now is an impact of this step: the
+      // restitution stage takes it, in the order of the impacts (a row of balls).
+      if (p.separation > touch_tolerance()) return false;
+      if (p.end_separation <= landed_tolerance()) return true;
+      bias = p.end_separation / h_;
+      return p.relax_cap > 0.0;
+  }
+  return false;
+}
+
+// Gauss-Seidel updates of each point's friction within the Coulomb disk of its current normal
+// impulse (Catto 2005; Box2D v2.4 SolveVelocityConstraints): both tangents from the same
+// velocities, the pair clamped to the disk, so sliding friction lies against the slip.
+void ContactConstraints::solve_friction(Manifold& m) {
+  if (!(m.friction > 0.0)) return;
+  SolverBody& a = solver_[m.a];
+  SolverBody& b = solver_[m.b];
+  for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+    Point& p = points_[k];
+    double t1 = p.tangent1.impulse - p.tangent1.mass * row_velocity(p.tangent1, a, b);
+    double t2 = p.tangent2.impulse - p.tangent2.mass * row_velocity(p.tangent2, a, b);
+    const double limit = m.friction * p.normal.impulse;
+    const double length = std::hypot(t1, t2);
+    if (length > limit) {  // slipping: on the edge of the cone, against the slip
+      const double scale = length > 0.0 ? limit / length : 0.0;
+      t1 *= scale, t2 *= scale;
+    }
+    apply_row(p.tangent1, a, b, t1 - p.tangent1.impulse);
+    apply_row(p.tangent2, a, b, t2 - p.tangent2.impulse);
+    p.tangent1.impulse = t1, p.tangent2.impulse = t2;
+  }
+}
+
+// λ' = P λ − A r on the manifold's points (see the header), r = J v + bias, on the impulses
+// `which` names. Nothing happens and false is returned when some λ' leaves [0, cap]; the λ'
+// found is left in `result` for solve_subset to start from.
+bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse,
+                                     const Mat4& projector, const double* bias,
+                                     const double* cap, Impulse which, Vec4* result) {
+  Manifold& m = manifolds_[manifold];
+  SolverBody& a = solver_[m.a];
+  SolverBody& b = solver_[m.b];
+  const int count = static_cast<int>(m.count);
+  Vec4 old = Vec4::Zero(), residual = Vec4::Zero();
+  for (int i = 0; i < count; ++i) {
+    Point& p = points_[m.first + i];
+    old[i] = impulse_of(p, which);
+    residual[i] = row_velocity(p.normal, a, b) + bias[i];
+  }
+  const Vec4 next = projector * old - inverse * residual;
+  if (result != nullptr) *result = next;
+  for (int i = 0; i < count; ++i)
+    if (!(next[i] >= 0.0) || (cap != nullptr && next[i] > cap[i])) return false;
+  for (int i = 0; i < count; ++i) {
+    Point& p = points_[m.first + i];
+    apply_row(p.normal, a, b, next[i] - old[i]);
+    impulse_of(p, which) = next[i];
+  }
+  return true;
+}
+
+// The active normal rows of a manifold solved together (see the header), each λ' within
+// [0, cap]: (K_s + Γ_s) λ'_s = K λ − r − K λ'_held over the rows not held at a bound, the
+// rows' K entries from the block, Γ_ii = gamma[i], r = J v + bias. A row whose λ' leaves its
+// bounds is held at the bound and the others solved again (an active-set method: symmetric
+// loads stay symmetric where a Gauss-Seidel pass would load the first point solved more).
+// `first`, when given, is a solution to start from (the prepared block's). False, with
+// nothing applied, when the free rows' matrix is singular or the bounds are not settled in
+// as many passes as rows.
+bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
+                                      const double* bias, const double* gamma,
+                                      const double* cap, Impulse which, const Vec4* first) {
+  Manifold& m = manifolds_[manifold];
+  SolverBody& a = solver_[m.a];
+  SolverBody& b = solver_[m.b];
+  const Mat4& k = blocks_[manifold].k;
+  const int count = static_cast<int>(m.count);
+  Vec4 old = Vec4::Zero(), residual = Vec4::Zero(), next = Vec4::Zero();
+  bool held[max_manifold_points] = {false, false, false, false};
+  for (int i = 0; i < count; ++i) {
+    if (!active[i]) continue;
+    Point& p = points_[m.first + i];
+    old[i] = impulse_of(p, which);
+    residual[i] = row_velocity(p.normal, a, b) + bias[i];
+  }
+  auto upper = [&](int i) { return cap != nullptr ? cap[i] : unbounded; };
+  for (int pass = 0; pass <= count; ++pass) {
+    if (pass > 0 || first == nullptr) {
+      int index[max_manifold_points], n = 0;
+      for (int i = 0; i < count; ++i)
+        if (active[i] && !held[i]) index[n++] = i;
+      Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+      Eigen::Vector4d right = Eigen::Vector4d::Zero();
+      for (int r = 0; r < n; ++r) {
+        const int i = index[r];
+        right[r] = -residual[i];
+        for (int j = 0; j < count; ++j)
+          if (active[j]) right[r] += k(i, j) * (held[j] ? old[j] - next[j] : old[j]);
+        for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
+        matrix(r, r) += gamma[i];
+      }
+      if (n > 0) {
+        Eigen::Matrix4d inverse;
+        bool invertible = false;
+        matrix.computeInverseWithCheck(inverse, invertible, 1e-12 * matrix.diagonal().maxCoeff());
+        if (!invertible) return false;
+        const Eigen::Vector4d solved = inverse * right;
+        for (int r = 0; r < n; ++r) next[index[r]] = solved[r];
+      }
+    } else {
+      next = *first;
+    }
+    bool settled = true;
+    for (int i = 0; i < count; ++i) {
+      if (!active[i] || held[i]) continue;
+      if (!(next[i] >= 0.0)) next[i] = 0.0, held[i] = true, settled = false;
+      else if (next[i] > upper(i)) next[i] = upper(i), held[i] = true, settled = false;
+    }
+    if (settled) {
+      for (int i = 0; i < count; ++i) {
+        if (!active[i]) continue;
+        Point& p = points_[m.first + i];
+        apply_row(p.normal, a, b, next[i] - impulse_of(p, which));
+        impulse_of(p, which) = next[i];
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+// The normal rows of one manifold in `mode` (see the header): as the prepared block when all
+// its points take part, as a smaller block when some do, point by point when a block cannot
+// settle. Returns the largest velocity error before the update.
+double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) {
+  Manifold& m = manifolds_[manifold];
+  SolverBody& a = solver_[m.a];
+  SolverBody& b = solver_[m.b];
+  const Impulse which = mode == NormalMode::push ? Impulse::push : Impulse::sweep;
+  double bias[max_manifold_points], block_bias[max_manifold_points];
+  double gamma[max_manifold_points], cap[max_manifold_points];
+  Softness soft[max_manifold_points];
+  bool active[max_manifold_points];
+  bool all_active = true;
+  double largest = 0.0;
+  for (std::uint32_t i = 0; i < m.count; ++i) {
+    Point& p = points_[m.first + i];
+    active[i] = normal_bias(m, p, mode, bias[i], soft[i]);
+    cap[i] = mode == NormalMode::relax ? p.relax_cap : unbounded;
+    // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
+    // for all the points of a manifold: they share their softness).
+    block_bias[i] = bias[i] / soft[i].mass_scale;
+    gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
+    if (!active[i]) {
+      all_active = false;
+      continue;
+    }
+    const double error = row_velocity(p.normal, a, b) + bias[i];
+    largest = std::max(largest, impulse_of(p, which) > 0.0 ? std::abs(error)
+                                                           : -std::min(error, 0.0));
+  }
+  if (m.block) {
+    const Block& block = blocks_[manifold];
+    const bool push = mode == NormalMode::push;
+    Vec4 start;
+    if (all_active) {
+      if (solve_block(manifold, push ? block.soft_inverse : block.rigid_inverse,
+                      push ? block.soft_projector : block.rigid_projector, block_bias,
+                      mode == NormalMode::relax ? cap : nullptr, which, &start) ||
+          solve_subset(manifold, active, block_bias, gamma, cap, which, &start))
+        return largest;
+    } else if (solve_subset(manifold, active, block_bias, gamma, cap, which, nullptr)) {
+      return largest;
+    }
+  }
+  for (std::uint32_t i = 0; i < m.count; ++i) {
+    if (!active[i]) continue;
+    Point& p = points_[m.first + i];
+    ConstraintRow row = p.normal;  // the row with this mode's impulse and bounds
+    row.impulse = impulse_of(p, which);
+    row.upper = cap[i];
+    solve_row(row, a, b, bias[i], soft[i]);
+    impulse_of(p, which) = row.impulse;
+  }
+  return largest;
+}
+
+double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forward) {
+  solver_ = solver;
+  const std::size_t n = manifolds_.size();
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t m = forward ? k : n - 1 - k;
+    if (mode != NormalMode::push) solve_friction(manifolds_[m]);
+    largest = std::max(largest, solve_normals(m, mode));
+  }
+  return largest;
+}
+
+// ---- the block matrices ---------------------------------------------------------------------
+
+namespace {
+
+// The affine dependency of four points in the contact plane (coordinates x, y): the unit
+// vector c with Σ cᵢ = 0 and Σ cᵢ (xᵢ, yᵢ) = 0, from the cofactors of [1; x; y]. Zero when the
+// points are collinear (the dependency is then not one vector).
+Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
+  auto minor = [&](int skip) {
+    int c[3], n = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != skip) c[n++] = i;
+    return (x[c[1]] - x[c[0]]) * (y[c[2]] - y[c[0]]) - (x[c[2]] - x[c[0]]) * (y[c[1]] - y[c[0]]);
+  };
+  Eigen::Vector4d c(minor(0), -minor(1), minor(2), -minor(3));
+  const double length = c.norm();
+  double size = 0.0;
+  for (int i = 0; i < 4; ++i) size = std::max(size, std::abs(x[i] - x[0]) + std::abs(y[i] - y[0]));
+  // Each minor is twice a triangle's area: collinear points leave only rounding.
+  if (!(length > 1e-9 * size * size)) return Eigen::Vector4d::Zero();
+  return c / length;
+}
+
+}  // namespace
+
+// K = J W Jᵀ of the manifold's normal rows (coupling(), engine/constraint_row.hpp), then the
+// rigid and soft block matrices of the header. Four points get their null vector c projected
+// out; two or three points must give a well-conditioned K (else no block).
+void ContactConstraints::prepare_block(std::size_t manifold) {
+  Manifold& m = manifolds_[manifold];
+  m.block = false;
+  const int count = static_cast<int>(m.count);
+  if (count < 2) return;
+  const SolverBody& a = found_with_[m.a];
+  const SolverBody& b = found_with_[m.b];
+  Eigen::Matrix4d k = Eigen::Matrix4d::Identity();  // unused rows and columns: decoupled
+  double trace = 0.0;
+  for (int i = 0; i < count; ++i)
+    for (int j = 0; j < count; ++j) {
+      k(i, j) = coupling(points_[m.first + i].normal.jacobian, points_[m.first + j].normal.jacobian,
+                         a, b);
+      if (i == j) trace += k(i, i);
+    }
+  if (!(trace > 0.0) || !std::isfinite(trace)) return;
+  const double scale = trace / count;
+  Eigen::Vector4d c = Eigen::Vector4d::Zero();
+  if (count == 4) {
+    Vec3 u, v;
+    tangent_basis(m.normal, u, v);
+    double x[4], y[4];
+    for (int i = 0; i < 4; ++i) {
+      x[i] = points_[m.first + i].r_b.dot(u);
+      y[i] = points_[m.first + i].r_b.dot(v);
+    }
+    c = affine_dependency(x, y);
+    if (c.isZero()) return;
+  }
+  Eigen::Matrix4d shifted = k + scale * c * c.transpose();
+  bool invertible = false;
+  Eigen::Matrix4d inverse;
+  shifted.computeInverseWithCheck(inverse, invertible, 1e-12 * std::pow(scale, 4));
+  if (!invertible || !inverse.allFinite()) return;
+  Eigen::Matrix4d pseudo = inverse - c * c.transpose() / scale;
+  for (int i = count; i < 4; ++i) pseudo(i, i) = 0.0, k(i, i) = 0.0;
+  Block& block = blocks_[manifold];
+  block.k = k;
+  for (int i = count; i < 4; ++i) block.k(i, i) = 0.0;
+  block.rigid_inverse = pseudo;
+  block.rigid_projector = pseudo * k;
+  // Soft: (K + γI)⁻¹ on the range of K (the component along c of a residual has no impulse
+  // that could change it, and would be amplified by 1/γ).
+  m.compliance = scale * m.softness.compliance();
+  if (m.compliance > 0.0) {
+    Eigen::Matrix4d soft = k + m.compliance * Eigen::Matrix4d::Identity();
+    for (int i = count; i < 4; ++i) soft(i, i) = 1.0;
+    Eigen::Matrix4d soft_inverse = soft.inverse();
+    if (count == 4) soft_inverse -= c * c.transpose() / m.compliance;
+    for (int i = count; i < 4; ++i) soft_inverse(i, i) = 0.0;
+    if (!soft_inverse.allFinite()) return;
+    block.soft_inverse = soft_inverse;
+    block.soft_projector = soft_inverse * k;
+  } else {
+    block.soft_inverse = block.rigid_inverse;
+    block.soft_projector = block.rigid_projector;
+  }
+  m.block = true;
+}
+
+// ---- bookkeeping -----------------------------------------------------------------------------
+
+void ContactConstraints::store(double h) {
+  next_contacts_.clear();
+  for (const Manifold& m : manifolds_)
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      const Point& p = points_[k];
+      ContactInfo info;
+      info.a = m.id_a, info.b = m.id_b, info.plane = m.plane, info.feature = p.feature;
+      info.point = p.point;
+      info.normal = m.normal;
+      info.depth = -p.separation;
+      // The next step is warm started with the load a point carried, not with an impact
+      // (touching balls that a blow set apart at one speed would be pushed apart again).
+      info.sweep_impulse = (p.flags & took_part_flag) ? 0.0 : p.normal.impulse;
+      info.normal_impulse = p.normal.impulse + p.restitution_impulse;
+      info.friction_impulse = p.tangent1.impulse * p.tangent1.jacobian.linear +
+                              p.tangent2.impulse * p.tangent2.jacobian.linear;
+      info.restitution = m.restitution;
+      info.friction = m.friction;
+      next_contacts_.push_back(info);
+    }
+  std::sort(next_contacts_.begin(), next_contacts_.end(),
+            [](const ContactInfo& x, const ContactInfo& y) { return sort_key(x) < sort_key(y); });
+  contacts_.swap(next_contacts_);
+  last_dt_ = h;
+}
+
+void ContactConstraints::body_removed(BodyId id) {
+  auto involves = [id](const ContactInfo& c) { return c.a == id || c.b == id; };
+  contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), involves), contacts_.end());
+  manifolds_.clear();
+  points_.clear();
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,310 @@
+// The contacts of a step as constraints of the shared solver (engine/solver.hpp): found between
+// the bodies' shapes and the static planes (engine/contact_finder.cpp: broad phase, narrow
+// phase engine/contacts.hpp, speculative contacts and their time of impact), each point three
+// rows of engine/constraint_row.hpp (the normal and two friction directions), solved by the
+// solver's stages, then stored for warm starting the next step.
+//
+// Per point: the normal row (001_* Appendix D: λ = −J v/(J W Jᵀ)) with λ ≥ 0, and two friction
+// rows whose impulses stay in the disk of radius μ λn (Coulomb's cone; Catto 2005: the
+// accumulated impulse is clamped, not each increment). Per sweep, for each manifold: the
+// friction of each point, then the normals (as a block, below).
+//
+// Details, each a named scheme:
+// - Friction directions: the first tangent along the point's slip (tangential relative
+//   velocity) before the solve, the second across it; any orthonormal pair when it does not
+//   slip (Duff et al., JCGT 2017). Sliding friction then opposes the slip, as Coulomb's law.
+// - Warm starting: a point that touched in the previous step (same bodies or plane, same
+//   `feature`, engine/contacts.hpp) starts from the impulses it ended the previous step's
+//   sweeps with, scaled by the ratio of the time steps; the friction impulse is kept as a world
+//   vector and re-projected on the new tangents. A point whose feature is new continues the
+//   nearest point of the previous step within match_distance (the position matching of
+//   Bullet's persistent manifolds).
+// - Speculative contacts (Catto, "Continuous Collision", GDC 2013; Box2D v3): points with a gap
+//   s > 0 are constraints too, v_n ≥ −s/Δt: the bodies may close the gap in this step, not
+//   more. Which gaps count: up to speculative_distance always; beyond it, out to what the
+//   bodies can travel in the step, only when they really meet in the step: the time of impact
+//   τ is found by conservative advancement (engine/time_of_impact.hpp) and the contact is taken
+//   at the poses of τ (its normal, points and lever arms where the shapes touch), with s the
+//   distance its points close from the start of the step to τ. A body flying past a corner
+//   gets no contact (no "ghost" hit) and a fast ball hitting a floor sideways gets the lever
+//   arm R of the real contact point.
+// - Separation during the step (Box2D v3's contact_solver.c): s = s₀ + n·(Δx_b + Δθ_b × r_b −
+//   Δx_a − Δθ_a × r_a), from how far the solver bodies moved (engine/constraint_row.hpp): the
+//   relax and restitution stages see the gap the positions left.
+// - Soft contacts (soft_step, Box2D v3 b2SolveContact): a touching point (s ≤ 0) is driven by
+//   the bias max(massScale·biasRate·s, −push speed) with the soft coefficients of contact_hertz
+//   and contact_damping_ratio (engine/constraint_row.hpp make_soft); relax solves it rigidly
+//   and without bias. sequential_impulses solves it rigidly and moves the bodies apart after
+//   the positions (below).
+// - The normal impulses of a manifold are solved as a block (in the spirit of Box2D v2.4's
+//   two-point block solver): with K = J W Jᵀ of its points, the accumulated impulses become
+//   λ' = P λ − A (J v + bias), where for rigid rows A = K⁺ (the pseudo-inverse) and P = K⁺K,
+//   and for soft rows A = (K + Γ)⁻¹ and P = A K, Γ = γ I the softness (the soft constraint
+//   K Δλ + J v + bias + Γ λ' = 0 of all points at once). This reaches every point's target at
+//   once; the four corners of a face are redundant (three independent normal motions: K has
+//   the null vector c of the points' affine dependency, Σ cᵢ = 0, Σ cᵢ pᵢ = 0), and the
+//   pseudo-inverse then gives the least-squares impulses: a symmetric load (a box landing flat,
+//   a box in a stack) gets equal impulses and no spin, where sequential impulses always leave
+//   the first point solved a little more loaded. K⁺ = (K + k c cᵀ)⁻¹ − c cᵀ/k (c unit, k > 0)
+//   costs one 4 x 4 inverse. When only some points take part (a corner lifted off, a point
+//   with a gap in a manifold that otherwise touches) they are solved as a smaller block,
+//   (K_s + Γ_s) λ' = K_s λ − r over them (Γ_ii = 0 for a rigid row), so the manifold stays
+//   symmetric where it was. When a block would need a negative impulse somewhere its points
+//   are solved one by one.
+// - Restitution, at the end of the step (Box2D v3's b2ApplyRestitution runs after the substeps
+//   too): the positions have landed the bodies on the surface (a point that meets it during
+//   the step is brought to it, not through it), and the velocities are then set to the
+//   post-impact ones, so the state the step leaves is the end-of-step state (no step with the
+//   body at rest on the surface before it bounces). A point bounces when e > 0, it touches at
+//   the end of the step and its impact velocity w (< 0: the normal velocity it met the surface
+//   with) is faster than the threshold: its target is the velocity whose next step follows the
+//   reflected parabola, v_n = −e w − a_n Δt/2. Why: every integrator here moves positions by
+//   Δt u with u the velocity the impulses act on, so they follow a parabola on which the
+//   velocity at the start of a step is u − a_n Δt/2 and at its end u + a_n Δt/2 (a_n the
+//   relative normal acceleration of the point, 0 for a body resting on a support). Reflecting
+//   that parabola (w → −e w) keeps its energy, so the rebound apex is e² of the drop height at
+//   60 Hz as at 1 kHz; w is that of the parabola at the surface, w = −√(w₀² − 2 a_n s) for a
+//   point that closed a gap s during the step (w₀ = u_n − a_n Δt/2 at its start).
+//   Impacts are events: the points that bounce solve together with the points that touched
+//   already at the start of the step (a ball bouncing on a box that rests on the floor pushes
+//   the box against the floor and rebounds as from the floor), each in increments ≥ 0 on top
+//   of the sweeps; a point that had a gap at the start and was closed by another impact's
+//   push (the next ball of a row) then has its own impact, with the velocity it has after that
+//   event, in the next round. So a row of touching-but-apart balls passes the striker's speed
+//   to the far ball, and a pair of elastic balls keeps its kinetic energy exactly (each round
+//   reflects its normal velocities).
+// - Lever arms after the positions moved: an impulse pair at one point conserves angular
+//   momentum, but the relax and restitution impulses act after the bodies moved by Δx_a, Δx_b,
+//   and with the arms of the start, x_a + r_a and x_b + r_b are then two points h (u_b − u_a)
+//   apart: a bounce of two balls passing each other at 5 m/s would change the angular
+//   momentum by that times the impulse. So the arms are moved to one point again, r_a + (1 −
+//   w)(Δx_b − Δx_a) and r_b − w (Δx_b − Δx_a), w = m_a⁻¹/(m_a⁻¹ + m_b⁻¹) (the point moves with
+//   the lighter body; nothing changes against a plane or a static body), and the rows are
+//   prepared again, for the manifolds whose bodies moved apart by more than the landing
+//   tolerance in the step (resting contacts keep theirs). Two spheres that moved apart get
+//   their contact at the end poses instead: the normal turned to the line of their centres,
+//   the arms along it through the centres (engine/contact_constraints.cpp turn_to_centres),
+//   so the impulses stay central (no spin from a frictionless bounce) and at one point
+//   (angular momentum kept); their bounce target is then the normal velocity that gives the
+//   pair the kinetic energy of the reflection, |v₀|² − (1 − e²) w² (contact_restitution.cpp
+//   turned_target): an elastic pair keeps its energy exactly.
+// - Position correction (sequential_impulses only): non-linear Gauss-Seidel (Box2D v2.4
+//   b2ContactSolver::SolvePositionConstraints) on the separation recomputed from each point's
+//   anchors, C = clamp(β (s + slop), −max_correction, 0), moving the bodies by −C/K along n.
+//   Only positions change, so overlap is removed without adding energy. Within a manifold the
+//   correction is first applied at the centroid with the mean separation, then to the points
+//   Jacobi-style (all measured at the same poses, each applying 1/count of its correction), so
+//   a box sunk evenly rises straight instead of being tipped corner after corner.
+//
+// Nothing here allocates once the vectors have grown to the largest number of contacts seen.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/body.hpp"
+#include "engine/body_store.hpp"
+#include "engine/constraint_row.hpp"
+#include "engine/contacts.hpp"
+#include "engine/plane.hpp"
+#include "engine/solver_settings.hpp"
+#include "engine/step_poll.hpp"
+
+namespace rigidlab {
+
+inline constexpr std::size_t no_plane = static_cast<std::size_t>(-1);
+
+// One contact point of the last step, for reports and for warm starting the next step.
+struct ContactInfo {
+  BodyId a;                      // body a; no_body_id when a is a plane
+  BodyId b;                      // body b
+  std::size_t plane = no_plane;  // index of the plane, when a is a plane
+  std::uint32_t feature = 0;
+  Vec3 point = Vec3::Zero();             // m, world, midway between the surfaces when found
+  Vec3 normal = Vec3::UnitY();           // unit, from a to b (a plane's own normal)
+  double depth = 0.0;                    // m, overlap when found (< 0: a gap the step could close)
+  double normal_impulse = 0.0;           // N s over the step: b received normal_impulse·normal
+  Vec3 friction_impulse = Vec3::Zero();  // N s, tangential, on b (a the opposite)
+  double restitution = 0.0;              // the mixed material of the pair (engine/plane.hpp)
+  double friction = 0.0;
+  double sweep_impulse = 0.0;            // N s: the normal impulse before restitution (the
+                                         // load the next step is warm started with)
+};
+
+// A point that touched (depth ≥ 0) or pushed (normal impulse > 0) in the step: the contacts
+// worth reporting. The others were speculative and stayed apart.
+inline bool touched(const ContactInfo& c) { return c.depth >= 0.0 || c.normal_impulse > 0.0; }
+
+// How a sweep treats the normal rows (see the header comment):
+//   velocity  before the positions move, rigid: a touching point may not approach (v_n ≥ 0), a
+//             point with a gap s may close it within the substep and no more (v_n ≥ −s/Δt);
+//   push      soft_step's position feedback on the push velocities: an overlap is pushed out
+//             by the soft row of contact_hertz and contact_damping_ratio (Box2D v3's soft
+//             contact), the push then moving the positions but never the velocities;
+//   relax     after the positions moved: a point touching now may not approach (v_n ≥ 0); a
+//             point with a gap now only gives back what the sweeps pushed with, down to
+//             v_n = −gap/Δt (Box2D v3's relax), and never pushes: a body still coming in is
+//             left to the next step.
+enum class NormalMode { velocity, push, relax };
+
+class ContactConstraints {
+ public:
+  // A point's flag after the restitution stage: it was in an impact round.
+  static constexpr std::uint8_t took_part_flag = 16;
+  // ---- the stages (engine/solver.cpp calls them) ----
+  // Finds the contacts at the bodies' present poses (slot i of `solver` is body i; slot
+  // bodies.size() is the ground, for planes) and prepares their rows. `ids` names the bodies.
+  void find(const std::vector<Body>& bodies, const std::vector<BodyId>& ids,
+            const std::vector<Plane>& planes, const SolverBody* solver,
+            const Acceleration* acceleration, const ContactSettings& settings, double h);
+  void warm_start(SolverBody* solver);
+  // After the solver bodies recorded how far they moved: each point's gap now, and the lever
+  // arms moved to one point again for the relax and restitution impulses (see below).
+  void positions_moved(SolverBody* solver);
+  // One sweep over all manifolds; returns the largest normal velocity error seen.
+  double sweep(SolverBody* solver, NormalMode mode, bool forward);
+  void restitution(SolverBody* solver, const Acceleration* acceleration, StepPoll* poll);
+  // sequential_impulses' position sweeps at the bodies' present poses; returns the index of
+  // the first body in a contact whose state is not finite, or all_finite.
+  std::size_t correct_positions(std::vector<Body>& bodies, StepPoll* poll);
+  void store(double h);
+
+  // ---- bookkeeping ----
+  std::size_t point_count() const { return points_.size(); }
+  // Every point of the last step (touched and speculative), ordered by body a, then body b or
+  // plane, then feature.
+  const std::vector<ContactInfo>& contacts() const { return contacts_; }
+  // The body left the world: its contacts are forgotten.
+  void body_removed(BodyId id);
+  // The state a step reads (the previous step's points and time step), for the world's undo
+  // and its saved states.
+  struct Cache {
+    std::vector<ContactInfo> contacts;
+    double last_dt = 0.0;
+  };
+  void save(Cache& to) const {
+    to.contacts = contacts_;
+    to.last_dt = last_dt_;
+  }
+  void restore(const Cache& from) {
+    contacts_ = from.contacts;
+    last_dt_ = from.last_dt;
+  }
+
+ private:
+  struct Point {
+    ConstraintRow normal, tangent1, tangent2;
+    Vec3 r_a, r_b;            // m, from each COM to the point (at the poses of the start;
+                              // moved to the end poses by positions_moved)
+    Vec3 start_r_a, start_r_b;  // m, the arms at the start (the impact velocity's)
+    Vec3 anchor_a, anchor_b;  // witness points in body coordinates (a plane's: world)
+    Vec3 point;               // m, world, when found
+    double separation;        // m: the gap at the start of the substep (< 0 overlap)
+    double end_separation;    // m: the gap after the positions moved
+    double relax_cap;         // N s: relax may only take back impulse from a point with a gap
+    double approach;          // m/s: J v before the solve
+    double slop;              // m: the overlap sequential_impulses' position sweeps leave
+    double restitution_impulse;  // N s: added by the restitution rounds
+    double push_impulse;      // N s: soft_step's position feedback (on the push velocities)
+    double round_impulse;     // N s: this restitution round's increment
+    double target;            // m/s: J v the restitution round drives toward
+    std::uint32_t feature;
+    std::uint8_t flags;       // of the restitution stage (contact_restitution.cpp)
+    bool turned;              // a sphere pair taken at the end poses (positions_moved)
+  };
+  struct Manifold {
+    std::uint32_t a, b;          // solver slots
+    std::uint32_t first, count;  // points
+    BodyId id_a, id_b;
+    std::size_t plane;
+    Vec3 normal;
+    Vec3 start_normal;           // the normal found (positions_moved may turn `normal`)
+    double friction, restitution;
+    double radius_a, radius_b;   // m, of a sphere (its witness is recomputed), else 0
+    Softness softness;
+    double compliance;           // γ of the soft block, 1/kg
+    bool block;                  // the block matrices below are usable
+  };
+  using Mat4 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
+  using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
+  struct Block {
+    Mat4 k;                               // J W Jᵀ of the normal rows
+    Mat4 rigid_inverse, rigid_projector;  // K⁺, K⁺K
+    Mat4 soft_inverse, soft_projector;    // (K + Γ)⁻¹, (K + Γ)⁻¹K
+  };
+
+  // contact_finder.cpp
+  struct Proxy {
+    double min_x, max_x;  // m
+    std::size_t index;
+    double radius;  // m, bounding sphere
+    double sweep;   // m: how far the shape's points can move in the step
+  };
+  void build_proxies(const std::vector<Body>& bodies, const SolverBody* solver);
+  void add_pair(const std::vector<Body>& bodies, const rigidlab::Manifold& m, std::size_t a,
+                std::size_t b, std::size_t plane, const Plane* plane_material);
+  void add_manifold(const std::vector<Body>& bodies, const rigidlab::Manifold& m, std::size_t a,
+                    std::size_t b, std::size_t plane, const Plane* plane_material, double toi,
+                    const Pose& pose_a, const Pose& pose_b);
+  void central_sphere_point(Manifold& m, Point& p, const Vec3& centre_a,
+                            const Vec3& centre_b) const;
+  double touch_tolerance() const;
+  // The largest gap at which a point counts as touching after the positions moved: a point the
+  // sweeps brought to the surface lands there up to rounding.
+  double landed_tolerance() const { return 1e-3 * touch_tolerance(); }
+
+  // contact_constraints.cpp
+  const ContactInfo* previous_point(const Manifold& m, const Point& p) const;
+  void prepare_block(std::size_t manifold);
+  double current_separation(const Manifold& m, const Point& p) const;
+  void turn_to_centres(Manifold& m, const Vec3& apart);
+  bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
+                   Softness& soft) const;
+  void solve_friction(Manifold& m);
+  double solve_normals(std::size_t manifold, NormalMode mode);
+  // Which impulse of a point a block solve accumulates.
+  enum class Impulse { sweep, round, push };
+  static double& impulse_of(Point& p, Impulse which);
+  bool solve_block(std::size_t manifold, const Mat4& inverse, const Mat4& projector,
+                   const double* bias, const double* cap, Impulse which, Vec4* result);
+  bool solve_subset(std::size_t manifold, const bool* active, const double* bias,
+                    const double* gamma, const double* cap, Impulse which, const Vec4* first);
+
+  // contact_restitution.cpp
+  void mark_supported(const Acceleration* acceleration);
+  double impact_velocity(const Manifold& m, const Point& p) const;
+  double turned_target(const Manifold& m, const Point& p, double w, double a_n) const;
+  double normal_acceleration(const Manifold& m, const Point& p) const;
+  bool start_round(bool first);
+  double round_sweep(bool forward);
+
+  // contact_positions.cpp
+  void witnesses(const std::vector<Body>& bodies, const Manifold& m, const Point& p, Vec3& pa,
+                 Vec3& pb) const;
+  void move_apart(std::vector<Body>& bodies, const Manifold& m, const Point& p, const Vec3& point,
+                  double correction);
+
+  // The step being solved.
+  const ContactSettings* settings_ = nullptr;
+  double h_ = 0.0;
+  std::size_t ground_ = 0;
+  SolverBody* solver_ = nullptr;  // during a stage
+  const SolverBody* found_with_ = nullptr;
+  const std::vector<BodyId>* ids_ = nullptr;
+  const Acceleration* acceleration_ = nullptr;
+  std::vector<Proxy> proxies_;
+  std::vector<Manifold> manifolds_;
+  std::vector<Point> points_;
+  std::vector<Block> blocks_;  // by manifold
+  // Restitution: per body, whether a resting contact supports it; its velocity then.
+  std::vector<unsigned char> supported_;
+  std::vector<std::uint32_t> round_manifolds_;  // the manifolds a restitution round sweeps
+  std::vector<Vec3> start_velocity_, start_angular_velocity_;  // u before warm starting
+  // The last step's points, sorted (warm starting), and the one being built.
+  std::vector<ContactInfo> contacts_;
+  std::vector<ContactInfo> next_contacts_;
+  double last_dt_ = 0.0;
+};
+
+}  // namespace rigidlab

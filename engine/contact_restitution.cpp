@@ -1,0 +1,255 @@
+// The contact constraints, part 3: restitution at the end of the step, impact by impact.
+// See engine/contact_constraints.hpp ("Restitution").
+#include <algorithm>
+#include <cmath>
+
+#include "engine/contact_helpers.hpp"
+
+namespace rigidlab {
+
+using namespace contact_detail;
+
+namespace {
+
+double square(double x) { return x * x; }
+
+// Point flags of the restitution stage.
+constexpr std::uint8_t touched_start = 1;  // touching when the substep began
+constexpr std::uint8_t touching_end = 2;   // touching after the positions moved
+constexpr std::uint8_t event = 4;          // impacts in the present round
+constexpr std::uint8_t fired = 8;          // impacted in an earlier round
+constexpr std::uint8_t took_part = ContactConstraints::took_part_flag;  // in some round
+
+// A round solves its events with every point that touches at the end and touched already at
+// the start (resting contacts: they hold what the impact pushes against) or has impacted.
+bool in_round(std::uint8_t flags) {
+  return (flags & event) ||
+         ((flags & touching_end) && (flags & (touched_start | fired)));
+}
+
+// At most this many rounds of impacts per step: each round is one impact of the chain a push
+// can travel along (a row of n balls needs n − 1).
+constexpr int max_rounds = 32;
+
+}  // namespace
+
+// A body held by a resting contact (one that touched at the start of the step, carried load
+// that its free acceleration pressed into it, and did not come in fast) does not fall freely:
+// its acceleration over the step is taken as 0, and its velocity as what the sweeps left it
+// with (a box on the floor under a bouncing ball). Without a force pressing them together
+// (no gravity) touching bodies are free: a struck row of touching balls moves as one block.
+void ContactConstraints::mark_supported(const Acceleration* acceleration) {
+  acceleration_ = acceleration;
+  supported_.assign(ground_ + 1, 0);
+  const double tolerance = touch_tolerance();
+  for (const Manifold& m : manifolds_)
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      const Point& p = points_[k];
+      if (!(p.separation <= tolerance && p.normal.impulse > 0.0 &&
+            p.approach >= -settings_->restitution_threshold))
+        continue;
+      const Vec3 pressed = acceleration[m.b].linear + acceleration[m.b].angular.cross(p.r_b) -
+                           acceleration[m.a].linear - acceleration[m.a].angular.cross(p.r_a);
+      if (m.normal.dot(pressed) < 0.0) supported_[m.a] = supported_[m.b] = 1;
+    }
+}
+
+// a_n: the relative normal acceleration of the point's material points (m/s²), each body free
+// or, when supported, at rest.
+double ContactConstraints::normal_acceleration(const Manifold& m, const Point& p) const {
+  auto of = [&](std::uint32_t slot, const Vec3& r) -> Vec3 {
+    if (supported_[slot]) return Vec3::Zero();
+    return acceleration_[slot].linear + acceleration_[slot].angular.cross(r);
+  };
+  return m.start_normal.dot(of(m.b, p.start_r_b) - of(m.a, p.start_r_a));
+}
+
+// w (m/s, ≤ 0): the normal velocity with which p met the surface in this step (along the normal
+// and at the arms it was found with), on the parabola
+// its positions follow: with w₀ its normal velocity at the start of the step (u − a Δt/2 per
+// body, u the velocity before the sweeps; a supported body's present velocity) and s its gap
+// then, the gap s + w₀ t + ½ a_n t² first closes at w = −√(w₀² − 2 a_n s) (however small s is:
+// the last 0.1 mm of a 4 m/s fall at 1 kHz changes w by 2e-4 m/s). A point overlapping at the
+// start meets the surface at once, at w₀. 0 when it does not come in within the step.
+double ContactConstraints::impact_velocity(const Manifold& m, const Point& p) const {
+  auto start = [&](std::uint32_t slot, const Vec3& r) -> Vec3 {
+    if (supported_[slot]) return point_velocity_of(solver_[slot], r);
+    const Vec3 v = start_velocity_[slot] - 0.5 * h_ * acceleration_[slot].linear;
+    const Vec3 w = start_angular_velocity_[slot] - 0.5 * h_ * acceleration_[slot].angular;
+    return v + w.cross(r);
+  };
+  const double w0 = m.start_normal.dot(start(m.b, p.start_r_b) - start(m.a, p.start_r_a));
+  const double a = normal_acceleration(m, p);
+  const double s = p.separation;
+  if (s <= 0.0) return std::min(w0, 0.0);
+  // A sphere pair taken at the end poses: it did meet in the step (it touches now).
+  if (p.turned) return w0 < 0.0 ? -std::sqrt(std::max(w0 * w0 - 2.0 * a * s, 0.0)) : 0.0;
+  const double square = w0 * w0 - 2.0 * a * s;
+  if (!(square >= 0.0)) return 0.0;  // turns back before reaching the surface
+  const double w = -std::sqrt(square);
+  // The time of that velocity, w = w₀ + a_n t, must lie within the step (and after w₀ < 0
+  // when a_n = 0, the gap closing at the constant rate −w₀).
+  const double t = a != 0.0 ? (w - w0) / a : (w0 < 0.0 ? s / -w0 : -1.0);
+  return t >= 0.0 && t <= h_ * (1.0 + 1e-9) ? w : 0.0;
+}
+
+// The bounce target of a sphere pair taken at the end poses (turn_to_centres): the sweeps
+// stopped it along the normal of the start, which is not the normal of the end, so reflecting
+// the impact velocity there would not give the pair's energy back. The target is the normal
+// velocity that does: the relative velocity of the centres leaves with |v|² = |v₀|² −
+// (1 − e²) w², v₀ the relative velocity before the step and w the impact velocity along the
+// normal, keeping what the bounce leaves alone across the normal now (the centres' relative
+// velocity is the normal velocity of the point up to the spins, which a central impulse
+// leaves alone).
+double ContactConstraints::turned_target(const Manifold& m, const Point& p, double w,
+                                         double a_n) const {
+  // The centres' relative velocity: central impulses change only it (and the pair's kinetic
+  // energy is that of the centre of mass plus ½ m_eff |v|² plus the unchanged spins).
+  const Vec3 before = start_velocity_[m.b] - start_velocity_[m.a];
+  const Vec3 now = solver_[m.b].velocity - solver_[m.a].velocity;
+  const double across = now.squaredNorm() - square(now.dot(m.normal));
+  const double e = m.restitution;
+  const double along = before.squaredNorm() - (1.0 - e * e) * w * w - across;
+  double target = std::sqrt(std::max(along, 0.0));
+  // With friction part of what left the relative velocity across the normal went into heat
+  // (and spins), not into the mismatch of the normals: it is not given back, and the bounce
+  // is no more than the reflection e |w|.
+  if (m.friction > 0.0) target = std::min(target, -e * w);
+  return std::max(target - 0.5 * a_n * h_, 0.0);
+}
+
+// One Gauss-Seidel sweep of a restitution round over its points, on the round's increments
+// (≥ 0). Whole manifolds in the round go as a block (a box landing flat leaves without a
+// spin). Returns the largest change of an increment.
+double ContactConstraints::round_sweep(bool forward) {
+  const std::size_t n = round_manifolds_.size();
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t mi = round_manifolds_[forward ? k : n - 1 - k];
+    Manifold& m = manifolds_[mi];
+    SolverBody& a = solver_[m.a];
+    SolverBody& b = solver_[m.b];
+    bool all = true, any = false;
+    bool member[max_manifold_points];
+    double bias[max_manifold_points], before[max_manifold_points];
+    const double gamma[max_manifold_points] = {0.0, 0.0, 0.0, 0.0};
+    for (std::uint32_t i = 0; i < m.count; ++i) {
+      const Point& p = points_[m.first + i];
+      member[i] = in_round(p.flags);
+      all = all && member[i], any = any || member[i];
+      bias[i] = -p.target;
+      before[i] = p.round_impulse;
+    }
+    if (!any) continue;
+    Vec4 start;
+    const bool block =
+        m.block && (all ? solve_block(mi, blocks_[mi].rigid_inverse, blocks_[mi].rigid_projector,
+                                      bias, nullptr, Impulse::round, &start) ||
+                              solve_subset(mi, member, bias, gamma, nullptr, Impulse::round,
+                                           &start)
+                        : solve_subset(mi, member, bias, gamma, nullptr, Impulse::round,
+                                       nullptr));
+    if (!block) {
+      for (std::uint32_t i = 0; i < m.count; ++i) {
+        Point& p = points_[m.first + i];
+        if (!in_round(p.flags)) continue;
+        const double v = row_velocity(p.normal, a, b);
+        const double total = std::max(p.round_impulse - p.normal.mass * (v - p.target), 0.0);
+        apply_row(p.normal, a, b, total - p.round_impulse);
+        p.round_impulse = total;
+      }
+    }
+    for (std::uint32_t i = 0; i < m.count; ++i)
+      largest = std::max(largest, std::abs(points_[m.first + i].round_impulse - before[i]));
+  }
+  return largest;
+}
+
+// Opens the next round (see the header). Its impacts: in the first round the points that came
+// in by themselves during the step (their impact velocity w from the start of the step < 0):
+// fast ones bounce, the others that had a gap at the start land; in a later round the points
+// that had a gap at the start, touch now and come in, pushed by an earlier impact (w their
+// present normal velocity at the end of the step, u + a_n Δt/2).
+// Each impact's target: the bounce −e w − a_n Δt/2 when e > 0 and −w exceeds the threshold,
+// else just no more approach (v_n ≥ 0). Returns whether there is any impact.
+bool ContactConstraints::start_round(bool first) {
+  const double threshold = settings_->restitution_threshold;
+  bool any = false;
+  for (const Manifold& m : manifolds_) {
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      p.round_impulse = 0.0;
+      p.target = 0.0;
+      if (p.flags & event) p.flags = static_cast<std::uint8_t>((p.flags & ~event) | fired);
+      if (!(p.flags & touching_end) || (p.flags & fired)) continue;
+      const double a_n = normal_acceleration(m, p);
+      const double v = row_velocity(p.normal, solver_[m.a], solver_[m.b]);
+      double w;
+      if (first) {  // came in by itself, fast (a bounce) or not (a landing), or not at all
+        w = impact_velocity(m, p);
+        if (!(w < 0.0)) continue;
+        if ((p.flags & touched_start) && !(m.restitution > 0.0 && -w > threshold)) continue;
+      } else {  // pushed in by an earlier impact
+        if (p.flags & touched_start) continue;
+        w = v + 0.5 * a_n * h_;
+        if (!(v < 0.0)) continue;
+      }
+      if (m.restitution > 0.0 && -w > threshold)
+        p.target = p.turned && first ? turned_target(m, p, w, a_n)
+                                     : std::max(-m.restitution * w - 0.5 * a_n * h_, 0.0);
+      p.flags |= event;
+      any = true;
+    }
+  }
+  return any;
+}
+
+void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acceleration,
+                                     StepPoll* poll) {
+  solver_ = solver;
+  acceleration_ = acceleration;
+  const double tolerance = touch_tolerance();
+  bool landings = false;
+  for (const Manifold& m : manifolds_)
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      p.flags = 0;
+      if (p.separation <= tolerance) p.flags |= touched_start;
+      if (p.end_separation <= landed_tolerance()) p.flags |= touching_end;
+      landings = landings || (p.flags == touching_end) || (p.flags && m.restitution > 0.0);
+    }
+  if (!landings) return;
+  mark_supported(acceleration);
+  // A push travels one contact of a chain per sweep pair (a ball bouncing on a box on the
+  // floor: the box's rebound error halves per pair; a struck row of touching balls), and
+  // impacts are rare: a round runs over its own manifolds until its increments settle to
+  // 1e-12 of the largest, up to max_iterations sweeps.
+  for (int round = 0; round < max_rounds && start_round(round == 0); ++round) {
+    round_manifolds_.clear();
+    for (std::size_t mi = 0; mi < manifolds_.size(); ++mi) {
+      const Manifold& m = manifolds_[mi];
+      for (std::uint32_t k = m.first; k < m.first + m.count; ++k)
+        if (in_round(points_[k].flags)) {
+          round_manifolds_.push_back(static_cast<std::uint32_t>(mi));
+          break;
+        }
+    }
+    for (int sweep = 0; sweep < ContactSettings::max_iterations; ++sweep) {
+      if (poll != nullptr) poll->tick(round_manifolds_.size());
+      const double change = round_sweep(sweep % 2 == 0);
+      double largest = 0.0;
+      for (std::uint32_t mi : round_manifolds_) {
+        const Manifold& m = manifolds_[mi];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k)
+          largest = std::max(largest, points_[k].round_impulse);
+      }
+      if (!(change > 1e-12 * largest)) break;
+    }
+    for (Point& p : points_) {
+      p.restitution_impulse += p.round_impulse;
+      if (in_round(p.flags)) p.flags |= took_part;
+    }
+  }
+}
+
+}  // namespace rigidlab

@@ -1,0 +1,149 @@
+// The constraint solver of a world: Box2D v3's solver stages (solver.c: b2SolverStage) over
+// ONE array of solver bodies (engine/constraint_row.hpp SolverBody, slot i = the world's body
+// i, the last slot the ground the planes belong to) shared by the contacts
+// (engine/contact_constraints.hpp) and the joints (engine/constraint.hpp).
+//
+// The stages of one substep, as World::step runs them (docs/architecture.md has the whole
+// pipeline):
+//   prepare      find the contacts, build the joints' rows, effective masses, block matrices
+//   warm start   apply the impulses each row ended the previous step with (scaled by the ratio
+//                of the time steps)
+//   solve        `iterations` Gauss-Seidel sweeps over joints then contacts, alternating
+//                direction, rigid on the velocities; soft_step also sweeps its soft position
+//                feedback ("with bias", below) each time
+//   integrate    the solver bodies record how far they moved (Δx = h (u + u_push), Δθ the
+//   positions    same) while the integrator's position stage moves the bodies
+//   relax        soft_step: `relax_iterations` rigid sweeps without position feedback, so the
+//                velocity the feedback added does not stay (Catto, "Solver2D": soft step)
+//   restitution  the bounces, on the end-of-step velocities (engine/contact_constraints.hpp)
+//   correct      sequential_impulses: non-linear Gauss-Seidel position sweeps for contacts and
+//                joint rows (Box2D v2.4's position solver)
+//   store        the impulses, for the reports and the next step's warm start
+// Box2D v3 runs the prepare stage once per step and its substeps inside the solver; here a
+// world substep is a whole pass (forces, collision, all stages), because the integrators
+// evaluate forces at every substep and the contacts are found at the substep's poses.
+//
+// soft_step's position feedback. Box2D v3 sweeps each row once with its soft bias on the body
+// velocities and then relaxes: rigid sweeps without bias that take the push-out velocity out
+// again. That needs the relax sweeps to converge, which Box2D gets from its 4 substeps; at one
+// substep a column of 20 boxes keeps a part of each step's push-out and bounces ever higher
+// (measured here: the top 4 cm up and down within a second, then falling). So the soft rows
+// act on separate push velocities (the split impulses of E. Catto, "Modeling and Solving
+// Constraints", GDC 2009, and Bullet's split impulse), which move the positions in this
+// substep and are then dropped: the body velocities never carry the push-out, and relax is
+// left with what it is for, the velocities at the moved positions. The soft rows are Box2D's
+// own (make_soft with contact_hertz / joint_hertz and their damping ratios, the push-out
+// speed bounded by contact_push_speed); as they carry no load (the velocity rows do), a
+// stack does not sag by load/(m ω²) as Box2D's does (1.7 cm for eight unit boxes at 30 Hz).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "engine/body.hpp"
+#include "engine/constraint.hpp"
+#include "engine/constraint_row.hpp"
+#include "engine/contact_constraints.hpp"
+#include "engine/solver_settings.hpp"
+#include "engine/step_poll.hpp"
+
+namespace rigidlab {
+
+class Solver {
+ public:
+  SolverKind kind = SolverKind::soft_step;
+  ContactSettings settings;
+  StepPoll* poll = nullptr;  // World::step's stop check during a step, else null
+
+  // ---- the shared arrays (sized by begin; slot ground() is the planes' ground) ----
+  void begin(std::size_t body_count);
+  SolverBody* bodies() { return bodies_.data(); }
+  const SolverBody* bodies() const { return bodies_.data(); }
+  // soft_step's push velocities (zero for sequential_impulses), by slot: the positions move
+  // with bodies() + pushes().
+  const SolverBody* pushes() const { return pushes_.data(); }
+  Acceleration* accelerations() { return accelerations_.data(); }
+  std::size_t ground() const { return bodies_.size() - 1; }
+
+  // ---- the stages of a substep of length h ----
+  // `joints` with the indices of their bodies (no_body for the world), resolved by the world.
+  struct JointRef {
+    Constraint* constraint;
+    std::size_t a, b;
+  };
+  void prepare(const std::vector<Body>& bodies, const std::vector<BodyId>& ids,
+               const std::vector<Plane>& planes, const std::vector<JointRef>& joints, double h);
+  void warm_start();
+  void solve();
+  void integrate_positions();
+  void relax();
+  void restitution();
+  // sequential_impulses only; returns the first body whose state is not finite, or all_finite.
+  std::size_t correct_positions(std::vector<Body>& bodies);
+  void store();
+
+  // ---- results ----
+  const std::vector<ContactInfo>& contacts() const { return contacts_.contacts(); }
+  std::size_t contact_point_count() const { return contacts_.point_count(); }
+  // The largest constraint velocity error (m/s or rad/s) seen by each sweep of the solve stage
+  // of the last substep (w:solver_report()).
+  const std::vector<double>& report() const { return report_; }
+  ContactConstraints& contact_constraints() { return contacts_; }
+
+  // ---- what the next step reads from the last (for the world's undo and saved states) ----
+  void save(ContactConstraints::Cache& contacts, double& last_substep) const {
+    contacts_.save(contacts);
+    last_substep = last_h_;
+  }
+  void restore(const ContactConstraints::Cache& contacts, double last_substep) {
+    contacts_.restore(contacts);
+    last_h_ = last_substep;
+  }
+  // The joints' row impulses, flattened in order (Constraint::impulses), and back.
+  template <class Joints>
+  static void save_impulses(const Joints& joints, std::vector<double>& to) {
+    to.clear();
+    for (const auto& joint : joints) {
+      to.push_back(static_cast<double>(joint->impulses_.size()));
+      to.insert(to.end(), joint->impulses_.begin(), joint->impulses_.end());
+    }
+  }
+  template <class Joints>
+  static void restore_impulses(Joints& joints, const std::vector<double>& from) {
+    std::size_t next = 0;
+    for (auto& joint : joints) {
+      const std::size_t count = static_cast<std::size_t>(from[next++]);
+      joint->impulses_.assign(from.begin() + next, from.begin() + next + count);
+      next += count;
+    }
+  }
+  const ContactConstraints& contact_constraints() const { return contacts_; }
+
+ private:
+  struct Row {
+    ConstraintRow row;
+    double push_impulse;  // soft_step's position feedback (on the push velocities)
+    Softness soft;       // per kind, for this substep
+    double error;        // C
+    double bias;         // soft position feedback or motor target, as solve_row takes it
+    std::uint32_t a, b;  // solver slots
+    JointRow::Kind kind;
+  };
+  double sweep_joints(bool forward);
+  void push_joints(bool forward);
+  double joint_bias(const Row& r, Softness& soft) const;
+  void correct_joint_positions(std::vector<Body>& bodies, const std::vector<JointRef>& joints);
+
+  std::vector<SolverBody> bodies_;
+  std::vector<SolverBody> pushes_;
+  std::vector<Acceleration> accelerations_;
+  ContactConstraints contacts_;
+  std::vector<Row> rows_;
+  std::vector<JointRow> scratch_;
+  const std::vector<JointRef>* joints_ = nullptr;
+  std::vector<double> report_;
+  double h_ = 0.0;
+  double last_h_ = 0.0;
+};
+
+}  // namespace rigidlab
