@@ -106,6 +106,7 @@
 #include "engine/body.hpp"
 #include "engine/body_store.hpp"
 #include "engine/constraint_row.hpp"
+#include "engine/contact_pairs.hpp"
 #include "engine/contacts.hpp"
 #include "engine/plane.hpp"
 #include "engine/solver_settings.hpp"
@@ -235,13 +236,6 @@ class ContactConstraints {
   };
 
   // contact_finder.cpp
-  struct Proxy {
-    double min_x, max_x;  // m
-    std::size_t index;
-    double radius;  // m, bounding sphere
-    double sweep;   // m: how far the shape's points can move in the step
-  };
-  void build_proxies(const std::vector<Body>& bodies, const SolverBody* solver);
   void add_pair(const std::vector<Body>& bodies, const rigidlab::Manifold& m, std::size_t a,
                 std::size_t b, std::size_t plane, const Plane* plane_material);
   void add_manifold(const std::vector<Body>& bodies, const rigidlab::Manifold& m, std::size_t a,
@@ -293,7 +287,7 @@ class ContactConstraints {
   const SolverBody* found_with_ = nullptr;
   const std::vector<BodyId>* ids_ = nullptr;
   const Acceleration* acceleration_ = nullptr;
-  std::vector<Proxy> proxies_;
+  ContactPairs pairs_;  // the broad phase, kept from step to step
   std::vector<Manifold> manifolds_;
   std::vector<Point> points_;
   std::vector<Block> blocks_;  // by manifold

@@ -1,4 +1,5 @@
-// The contact constraints, part 1: finding the contacts of a step (broad phase, narrow phase,
+// The contact constraints, part 1: finding the contacts of a step (the candidate pairs of the
+// broad phase, engine/contact_pairs.hpp; the narrow phase, engine/contacts.hpp;
 // speculative contacts and their time of impact) and turning each point into rows.
 // See engine/contact_constraints.hpp.
 #include <algorithm>
@@ -32,28 +33,6 @@ constexpr double slop_fraction = 0.01;
 
 }  // namespace
 
-// Broad phase: bounding spheres grown by how far the body can move in the step (|u| + |ω| R,
-// with u and ω the velocities the integrator's velocity stage gave its positions), sorted
-// along x (sweep and prune).
-void ContactConstraints::build_proxies(const std::vector<Body>& bodies, const SolverBody* solver) {
-  const double half_margin = 0.5 * settings_->speculative_distance;
-  proxies_.clear();
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    if (b.shape.kind == ShapeKind::none) continue;
-    const double radius = bounding_radius(b.shape);
-    const double speed =
-        solver[i].velocity.norm() + solver[i].angular_velocity.norm() * radius;
-    // Capped so that absurd speeds (1e300 m/s) cannot make the margins overflow to infinity.
-    const double sweep = std::min(speed * h_, max_sweep);
-    const double reach = radius + sweep + half_margin;
-    proxies_.push_back({b.position.x() - reach, b.position.x() + reach, i, radius, sweep});
-  }
-  std::sort(proxies_.begin(), proxies_.end(), [](const Proxy& p, const Proxy& q) {
-    return p.min_x < q.min_x || (p.min_x == q.min_x && p.index < q.index);
-  });
-}
-
 void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector<BodyId>& ids,
                               const std::vector<Plane>& planes, const SolverBody* solver,
                               const Acceleration* acceleration, const ContactSettings& settings,
@@ -66,32 +45,31 @@ void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector
   ids_ = &ids;
   manifolds_.clear();
   points_.clear();
-  build_proxies(bodies, solver);
-  for (const Proxy& p : proxies_) {
-    const Body& b = bodies[p.index];
-    if (is_static(b)) continue;
-    const double margin = settings.speculative_distance + p.sweep;
+  pairs_.update(bodies, ids, solver, h, settings.speculative_distance);
+  // The planes first, body by body, then the pairs in the order of their ids
+  // (engine/contact_pairs.hpp): the order depends on the ids only.
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (b.shape.kind == ShapeKind::none || is_static(b)) continue;
+    const double margin = settings.speculative_distance + pairs_.sweep(i);
     for (std::size_t k = 0; k < planes.size(); ++k) {
-      if (signed_distance(planes[k], b.position) - p.radius > margin) continue;
+      if (signed_distance(planes[k], b.position) - pairs_.radius(i) > margin) continue;
       const rigidlab::Manifold m = collide_shape_plane(b.shape, pose_of(b), planes[k], margin);
-      if (m.count > 0) add_pair(bodies, m, no_body, p.index, k, &planes[k]);
+      if (m.count > 0) add_pair(bodies, m, no_body, i, k, &planes[k]);
     }
   }
-  for (std::size_t i = 0; i < proxies_.size(); ++i) {
-    for (std::size_t j = i + 1; j < proxies_.size() && proxies_[j].min_x <= proxies_[i].max_x;
-         ++j) {
-      const std::size_t a = std::min(proxies_[i].index, proxies_[j].index);
-      const std::size_t b = std::max(proxies_[i].index, proxies_[j].index);
-      const Body& body_a = bodies[a];
-      const Body& body_b = bodies[b];
-      if (is_static(body_a) && is_static(body_b)) continue;
-      const double margin = settings.speculative_distance + proxies_[i].sweep + proxies_[j].sweep;
-      const double reach = proxies_[i].radius + proxies_[j].radius + margin;
-      if ((body_b.position - body_a.position).squaredNorm() > reach * reach) continue;
-      const rigidlab::Manifold m =
-          collide_shapes(body_a.shape, pose_of(body_a), body_b.shape, pose_of(body_b), margin);
-      if (m.count > 0) add_pair(bodies, m, a, b, no_plane, nullptr);
-    }
+  for (const BodyPair& pair : pairs_.pairs()) {
+    const Body& body_a = bodies[pair.a];
+    const Body& body_b = bodies[pair.b];
+    const double margin =
+        settings.speculative_distance + pairs_.sweep(pair.a) + pairs_.sweep(pair.b);
+    // The bounding spheres first: cheaper than the narrow phase, and most pairs of fat boxes
+    // are farther apart than that.
+    const double reach = pairs_.radius(pair.a) + pairs_.radius(pair.b) + margin;
+    if ((body_b.position - body_a.position).squaredNorm() > reach * reach) continue;
+    const rigidlab::Manifold m =
+        collide_shapes(body_a.shape, pose_of(body_a), body_b.shape, pose_of(body_b), margin);
+    if (m.count > 0) add_pair(bodies, m, pair.a, pair.b, no_plane, nullptr);
   }
   blocks_.resize(manifolds_.size());
   for (std::size_t m = 0; m < manifolds_.size(); ++m) prepare_block(m);
