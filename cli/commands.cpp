@@ -34,7 +34,8 @@ const Subcommand subcommands[] = {
      "run the checks of lessons (default: all; a FILE that is a folder: its lessons) under "
      "limits",
      check_command},
-    {"view", "FILE.lua [ARG ...]", "show the world the script returns, live in the terminal",
+    {"view", "[LIMITS] FILE.lua [ARG ...]",
+     "show the world (or articulation) the script returns, live in the terminal; <- rewinds",
      view_command},
     {nullptr, nullptr, nullptr, nullptr},
 };

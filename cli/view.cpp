@@ -2,9 +2,11 @@
 
 #include <cstdio>
 
+#include "cli/limit_options.hpp"
 #include "cli/limits.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
+#include "lua/articulation.hpp"
 #include "lua/binding.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/world.hpp"
@@ -33,15 +35,19 @@ int protected_view(lua_State* L) {
     session.exit_status = usage_error(lua_tostring(L, -1));
     return 0;
   }
-  if (status == LUA_OK) status = call_chunk(L, 0, 1, Traceback::append);
+  if (status == LUA_OK) {
+    const TimedRun timed(L);  // --timeout bounds the script, not the time spent watching
+    status = call_chunk(L, 0, 1, Traceback::append);
+  }
   if (status != LUA_OK) {
     report_error(L, "rigidlab: ");
     session.exit_status = 1;
     return 0;
   }
-  if (rigidlab::lua::test_world(L, -1) == nullptr) {
-    std::fprintf(stderr, "rigidlab: view: %s must return a world, got %s\n", path,
-                 rigidlab::lua::value_type_name(L, -1));
+  if (rigidlab::lua::test_world(L, -1) == nullptr &&
+      rigidlab::lua::test_articulation(L, -1) == nullptr) {
+    std::fprintf(stderr, "rigidlab: view: %s must return a world or an articulation, got %s\n",
+                 path, rigidlab::lua::value_type_name(L, -1));
     session.exit_status = 1;
     return 0;
   }
@@ -57,16 +63,32 @@ int protected_view(lua_State* L) {
 }  // namespace
 
 int view_command(const std::vector<std::string>& arguments) {
-  if (arguments.empty())
+  // The limits come before the script; what follows it is the script's.
+  Limits limits;
+  std::size_t i = 0;
+  for (; i < arguments.size() && arguments[i].size() > 1 && arguments[i][0] == '-'; ++i) {
+    std::string error;
+    if (arguments[i] == "--") {
+      ++i;
+      break;
+    }
+    if (!take_limit_option(arguments, i, limits, error))
+      return usage_error("unrecognized option '" + arguments[i] + "' for 'view'");
+    if (!error.empty()) return usage_error(error);
+  }
+  if (i == arguments.size())
     return usage_error("'view' needs a script that returns a world: rigidlab view FILE.lua");
-  LimitedState state(Limits{}, WhenStuck::exit);
+  LimitedState state(limits, WhenStuck::exit);
   lua_State* L = state.get();
   if (L == nullptr) {
-    std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
+    std::fprintf(stderr, "rigidlab: cannot create the Lua state: %s\n",
+                 limits.max_memory_megabytes > 0 ? "the memory limit is too small"
+                                                 : "not enough memory");
     return 1;
   }
   lua_gc(L, LUA_GCSTOP);
-  ViewSession session{arguments};
+  ViewSession session{std::vector<std::string>(arguments.begin() + static_cast<long>(i),
+                                                arguments.end())};
   lua_pushcfunction(L, protected_view);
   lua_pushlightuserdata(L, &session);
   if (lua_pcall(L, 1, 0, 0) != LUA_OK) {

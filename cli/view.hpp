@@ -1,5 +1,8 @@
-// rigidlab view FILE.lua [ARG ...]: runs the script (its arguments in `arg`, as for
-// `rigidlab FILE.lua`), which must return a world, and shows that world live (w:view{}).
+// rigidlab view [LIMITS] FILE.lua [ARG ...]: runs the script (its arguments in `arg`, as for
+// `rigidlab FILE.lua`), which must return a world or an articulation, and shows it live (w:view{}, art:view{}).
+// LIMITS: --max-memory MB and --max-instructions N hold for the script and the view (the
+// view's history of saved states counts against the memory limit); --timeout S bounds the
+// script only, not the time spent watching.
 #pragma once
 
 #include <string>

@@ -126,6 +126,12 @@ std::string draw(lua_State* L, const present::Scene& scene, const RenderRequest&
 
 }  // namespace
 
+const char* missing_articulation_overlay(const RenderRequest& request, bool trail_ok) {
+  const SceneRequest& s = request.scene;
+  return s.momentum ? "L" : s.contacts ? "contacts" : s.ellipsoid ? "ellipsoid"
+         : request.trail && !trail_ok ? "trail" : nullptr;
+}
+
 std::string render_world(lua_State* L, int world, const RenderRequest& request) {
   SceneRequest scene_request = request.scene;
   if (request.trail) scene_request.trails = recorded_trails(L, world, 2);
@@ -151,9 +157,7 @@ int articulation_render(lua_State* L) {
   check_no_extra_args(L, 2);
   const RenderRequest request = check_render_request(L, 2);
   const SceneRequest& s = request.scene;
-  const char* missing = s.momentum ? "L" : s.contacts ? "contacts" : s.ellipsoid ? "ellipsoid"
-                        : request.trail ? "trail" : nullptr;
-  if (missing != nullptr)
+  if (const char* missing = missing_articulation_overlay(request, false))
     arg_error(L, 2, "field 'show': '%s' is not drawn for articulations (they show 'frames', "
               "'omega' and 'joints')", missing);
   LuaArticulation& a = check_articulation(L, 1);  // after every option was read

@@ -45,6 +45,10 @@ RenderRequest check_render_request(lua_State* L, int arg);
 // make a camera.
 bool apply_camera(const CameraRequest& request, present::Camera& camera, std::string& problem);
 
+// The first overlay asked for that an articulation does not draw ('L', 'contacts',
+// 'ellipsoid'; `trail` too unless `trail_ok`), or nullptr: art:render and art:view refuse it.
+const char* missing_articulation_overlay(const RenderRequest& request, bool trail_ok);
+
 // The frame of the world at stack index `world` (options read already from the table at stack
 // index 2, which errors blame): the scene with the
 // overlays asked for, drawn through the camera asked for.

@@ -3,8 +3,9 @@
 // follows resizes); keys pause, step forward, change the speed, orbit the camera, cycle the
 // overlays, quit. The frame rate is held by drawing fewer frames, never by slowing simulated
 // time; only when the steps alone take longer than real time does the status say so.
-// Stepping back (exact rewind through a ring of saved states) waits for the engine's
-// World::save_state / restore_state (issue 13); until then ← says so.
+// ← steps back through a ring of the world's saved states (World::save_state, restored
+// exactly), → and space step forward again from there: the same states, bit for bit, so the
+// same frames (lua/view_subject.hpp keeps the ring and the trails).
 // present/terminal restores the terminal however the view ends: q, Ctrl-C (an error raised
 // at the next stop check), an error in a force callback, a limit, os.exit.
 #include <unistd.h>
@@ -18,7 +19,9 @@
 #include <string>
 
 #include "lua/modules.hpp"
+#include "lua/articulation.hpp"
 #include "lua/render.hpp"
+#include "lua/view_subject.hpp"
 #include "lua/world.hpp"
 #include "present/terminal.hpp"
 #include "present/text.hpp"
@@ -29,8 +32,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double frame_period = 1.0 / 30;  // s of wall time between frames
-constexpr const char* unavailable_rewind =
-    "stepping back needs the engine's saved states (World::save_state), not there yet";
 
 struct ViewRequest {
   RenderRequest render;
@@ -74,12 +75,12 @@ SceneRequest overlay_mode(const SceneRequest& asked, int mode) {
 
 class View {
  public:
-  View(lua_State* L, const ViewRequest& request)
-      : L_(L), request_(request), paused_(request.paused), speed_(request.speed) {}
+  View(lua_State* L, const ViewRequest& request, std::unique_ptr<ViewSubject> subject)
+      : L_(L), request_(request), subject_(std::move(subject)), paused_(request.paused),
+        speed_(request.speed) {}
 
   void run(present::TerminalSession& terminal) {
     const StopPoller stop(L_);
-    remember();
     Clock::time_point last = Clock::now(), next_frame = last;
     bool dirty = true;
     std::string input;
@@ -110,38 +111,17 @@ class View {
 
  private:
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-  World& world() { return check_world(L_, 1).world; }
 
-  // Steps the world through w:step (force callbacks, limits and Ctrl-C as in a script).
+  // Steps through the object's own step method (force callbacks, controls, limits and Ctrl-C
+  // as in a script); the subject remembers the state.
   void step() {
     lua_getfield(L_, 1, "step");
     lua_pushvalue(L_, 1);
     lua_pushnumber(L_, request_.dt);
     lua_call(L_, 2, 0);
-    remember();
-  }
-
-  // Keeps the bodies' positions of the last `trail_length` states, for the trails.
-  void remember() {
-    const std::vector<Body>& bodies = world().bodies();
-    protect(L_, [&] {
-      if (trail_.size() < trail_length) trail_.emplace_back();
-      std::vector<Vec3>& slot = trail_[trail_next_];
-      slot.resize(bodies.size());
-      for (std::size_t i = 0; i < bodies.size(); ++i) slot[i] = bodies[i].position;
-      trail_next_ = (trail_next_ + 1) % trail_length;
-    });
-  }
-
-  // The COM paths over the remembered states, oldest first.
-  std::vector<std::vector<Vec3>> trails() const {
-    std::vector<std::vector<Vec3>> out;
-    for (std::size_t k = 0; k < trail_.size(); ++k) {
-      const std::vector<Vec3>& slot = trail_[(trail_next_ + k) % trail_.size()];
-      out.resize(std::max(out.size(), slot.size()));
-      for (std::size_t i = 0; i < slot.size(); ++i) out[i].push_back(slot[i]);
-    }
-    return out;
+    subject_->stepped(L_);
+    const std::string note = subject_->take_note();
+    if (!note.empty()) note_ = note;
   }
 
   // Runs `simulated` more seconds of the world, but steps for at most half a frame of wall
@@ -168,7 +148,7 @@ class View {
     switch (key) {
       case present::Key::pause: paused_ = !paused_; owed_ = 0; return true;
       case present::Key::step_forward: paused_ = true; step(); return true;
-      case present::Key::step_back: paused_ = true; note_ = unavailable_rewind; return true;
+      case present::Key::step_back: paused_ = true; subject_->back(L_, note_); return true;
       case present::Key::faster: speed_ = std::min(64.0, speed_ * 2); return true;
       case present::Key::slower: speed_ = std::max(1.0 / 64, speed_ / 2); return true;
       case present::Key::orbit_left: return orbit(-0.15, 0);
@@ -197,8 +177,8 @@ class View {
     columns = std::max(columns, 20);
     rows = std::max(rows, 6);
     SceneRequest overlays = overlay_mode(request_.render.scene, overlays_);
-    if ((request_.render.trail && overlays_ == 0) || overlays_ == 1) overlays.trails = trails();
-    const present::Scene scene = protect(L_, [&] { return scene_from_world(world(), overlays); });
+    const bool trails = (request_.render.trail && overlays_ == 0) || overlays_ == 1;
+    const present::Scene scene = subject_->scene(L_, overlays, trails);
     present::RenderOptions options;
     options.style = request_.render.style;
     options.width = columns;
@@ -226,38 +206,35 @@ class View {
   }
 
   std::string status(int columns) {
-    const World& w = world();
+    const ViewTotals totals = subject_->totals(L_);
     const bool unicode = request_.render.style.unicode;
     char text[256];
-    std::snprintf(text, sizeof text, "t %.3f s  E %.6g J  |L| %.6g  x%g  %s", w.time(), w.energy(),
-                  w.angular_momentum().norm(), speed_,
+    std::snprintf(text, sizeof text, "t %.3f s  E %.6g J  |L| %.6g  x%g  %s", totals.time,
+                  totals.energy, totals.momentum, speed_,
                   paused_ ? "paused" : slow_ ? "running (slower than real time)" : "running");
     std::string line = text;
+    const std::string position = subject_->position();
+    if (!position.empty()) line += "  " + position;
     if (!note_.empty()) line += "  (" + note_ + ")";
     static const char* const modes[] = {"", "  overlays: all", "  overlays: none"};
     line += modes[overlays_];
-    line += unicode ? "   space pause  → step  +− speed  ⇧←→↑↓ orbit  o overlays  q quit"
-                    : "   space pause  -> step  +- speed  shift+arrows orbit  o overlays  q quit";
+    line += unicode ? "   space pause  ←→ step  +− speed  ⇧←→↑↓ orbit  o overlays  q quit"
+                    : "   space pause  <- -> step  +- speed  shift+arrows orbit  o overlays  q quit";
     return present::fit_width(line, static_cast<std::size_t>(columns) - 1, unicode);
   }
 
   lua_State* L_;
   ViewRequest request_;
+  std::unique_ptr<ViewSubject> subject_;
   bool paused_, slow_ = false, has_camera_ = false;
   double speed_, owed_ = 0;
   int overlays_ = 0, columns_ = 0, rows_ = 0;
   present::Camera camera_;
-  static constexpr std::size_t trail_length = 300;
-  std::vector<std::vector<Vec3>> trail_;
-  std::size_t trail_next_ = 0;
   std::string note_;
 };
 
-int world_view(lua_State* L) {
-  check_world(L, 1);
-  check_no_extra_args(L, 2);
-  const ViewRequest request = check_view_request(L);
-  lua_settop(L, 2);
+// Runs the view of the object at stack index 1 (options read, at index 2) until q.
+void run_view(lua_State* L, const ViewRequest& request, std::unique_ptr<ViewSubject> subject) {
   std::string problem;
   std::unique_ptr<present::TerminalSession> terminal;
   try {
@@ -266,8 +243,32 @@ int world_view(lua_State* L) {
     problem = e.what();
   }
   if (!problem.empty()) function_error(L, "%s", problem.c_str());
-  View view(L, request);
+  View view(L, request, std::move(subject));
   view.run(*terminal);  // a Lua error unwinds through here: ~TerminalSession restores
+}
+
+int world_view(lua_State* L) {
+  check_world(L, 1);
+  check_no_extra_args(L, 2);
+  const ViewRequest request = check_view_request(L);
+  lua_settop(L, 2);
+  check_world(L, 1);  // after every option was read
+  run_view(L, request, world_subject(L));
+  return 0;
+}
+
+// art:view{...}: as w:view; the overlays an articulation has are frames, omega, joints and
+// trail (as art:render, asking for another is an error).
+int articulation_view(lua_State* L) {
+  check_articulation(L, 1);
+  check_no_extra_args(L, 2);
+  const ViewRequest request = check_view_request(L);
+  if (const char* missing = missing_articulation_overlay(request.render, true))
+    arg_error(L, 2, "field 'show': '%s' is not drawn for articulations (they show 'frames', "
+              "'omega', 'joints' and 'trail')", missing);
+  lua_settop(L, 2);
+  check_articulation_unlocked(L, 1, "view");
+  run_view(L, request, articulation_subject(L));
   return 0;
 }
 
@@ -276,15 +277,27 @@ const Entry methods[] = {
      "w:view{show =, camera =, dt =, speed =, paused =, ascii =, color =}",
      "The world live in the terminal, at the terminal's size: it runs in real time (times\n"
      "speed, default 1) in steps of dt (default 1/60 s) until you press q. Keys: space pause,\n"
-     "-> one step (and pause), + and - speed, shift+arrows (or a d w s, up and down) orbit\n"
-     "the camera, o cycles the overlays (those in show, all, none); <- (stepping back) waits\n"
-     "for the engine's saved states. A status line shows t, the energy and |L|. The world\n"
-     "stays where the view leaves it. Frames as w:render draws them; the terminal is\n"
-     "restored however the view ends (q, Ctrl-C, an error)."},
+     "-> one step (and pause), <- one step back (the last 600 steps, fewer for a large world,\n"
+     "are kept and restored exactly: stepping forward again gives the same motion), + and -\n"
+     "speed, shift+arrows (or a d w s, up and down) orbit the camera, o cycles the overlays\n"
+     "(those in show, all, none). A status line shows t, the energy and |L|. The world stays\n"
+     "where the view leaves it (after a rewind: at the state shown). Frames as w:render draws\n"
+     "them; the terminal is restored however the view ends (q, Ctrl-C, an error)."},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
+
+const Entry articulation_methods[] = {
+    {"view", articulation_view, "articulation:view",
+     "art:view{show =, camera =, dt =, speed =, paused =, ascii =, color =}",
+     "The articulation live in the terminal, as w:view shows a world (frames as art:render\n"
+     "draws them; show: 'frames', 'omega', 'joints', 'trail'). Same keys, except that <-\n"
+     "cannot step back yet: the engine keeps no saved articulation states."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace
 
-void open_view(lua_State* L, int) { add_methods(L, world_type, methods); }
+void open_view(lua_State* L, int) {
+  add_methods(L, world_type, methods);
+  add_methods(L, articulation_type, articulation_methods);
+}
 
 }  // namespace rigidlab::lua

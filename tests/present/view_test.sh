@@ -2,7 +2,9 @@
 # rigidlab view in a real terminal (tmux): the view runs in real time, pauses, steps forward
 # one step per key (the same state gives the same frame), orbits, follows a resize, and q
 # ends it with the terminal restored (main screen, cursor visible); so do an error in a force
-# callback and Ctrl-C. (Stepping back waits for the engine's World::save_state: ← says so.)
+# callback and Ctrl-C. Rewind: ← ten times from a paused state and → ten times shows, on the
+# way forward, the very screens seen on the way back (the states restored and stepped again
+# bit for bit), and they are ten different pictures.
 # Usage: view_test.sh PATH_TO_RIGIDLAB
 source "$(dirname "$0")/../cli/testlib.sh" "$1"
 source "$(dirname "$0")/../cli/terminal.sh"
@@ -33,7 +35,10 @@ run "view needs a script" -- "$rigidlab" view
 [[ $status == 2 && $err == *"'view' needs a script that returns a world"* ]] && pass || fail "status $status: $err"
 printf 'return 42\n' >"$scratch/number.lua"
 run "the script must return a world" -- "$rigidlab" view "$scratch/number.lua"
-[[ $status == 1 && $err == *"number.lua must return a world, got number"* ]] && pass || fail "status $status: $err"
+[[ $status == 1 && $err == *"number.lua must return a world or an articulation, got number"* ]] && pass || fail "status $status: $err"
+
+run "view refuses an unknown option" -- "$rigidlab" view --fast "$scratch/flip.lua"
+[[ $status == 2 && $err == *"unrecognized option '--fast' for 'view'"* ]] && pass || fail "status $status: $err"
 
 linger=1
 start LANG=C.UTF-8 -- view flip.lua
@@ -57,12 +62,40 @@ sleep 0.3
 case_name="-> advances one step of 1/60 s"
 awk -v a="$paused_at" -v b="$(time_shown)" 'BEGIN { d = b - a; exit !(d > 0.0155 && d < 0.0175) }' &&
   pass || fail "t went from $paused_at to $(time_shown)"
-before=$(settled)
-key Left
-wait_for "<- says why it cannot step back yet" 'stepping back needs'
-case_name="the same state gives the same picture"
-[[ $(settled | grep -v '^t ') == "$(printf '%s\n' "$before" | grep -v '^t ')" ]] && pass ||
-  fail "the picture changed without a step"
+# after KEY SCREEN: presses KEY, waits until the screen is no longer SCREEN, then until it settles.
+after() {
+  key "$1"
+  for _ in $(seq 60); do [[ $(screen) != "$2" ]] && break; sleep 0.05; done
+  settled
+}
+picture() { printf '%s\n' "$1" | grep -v '^t '; }
+shown_time() { printf '%s\n' "$1" | grep -E '^t [0-9.]+ s  E ' | sed -E 's/^t ([0-9.]+) s.*/\1/'; }
+declare -a back_frames
+back_frames[0]=$(settled)
+for k in $(seq 10); do back_frames[k]=$(after Left "${back_frames[k - 1]}"); done
+case_name="<- steps back ten steps of 1/60 s, and the status says so"
+awk -v a="$(shown_time "${back_frames[0]}")" -v b="$(shown_time "${back_frames[10]}")" \
+  'BEGIN { d = a - b; exit !(d > 0.160 && d < 0.174) }' &&
+  [[ ${back_frames[10]} == *"rewound 10 of "* ]] && pass ||
+  fail "t went from $(shown_time "${back_frames[0]}") to $(shown_time "${back_frames[10]}"): $(printf '%s\n' "${back_frames[10]}" | grep '^t ')"
+case_name="the ten steps back are ten different pictures"
+distinct=$(for k in $(seq 0 10); do picture "${back_frames[k]}" | md5sum; done | sort -u | wc -l)
+((distinct == 11)) && pass || fail "only $distinct different pictures among 11"
+forward=${back_frames[10]}
+identical=0
+for k in $(seq 9 -1 0); do
+  forward=$(after Right "$forward")
+  if [[ $forward == "${back_frames[k]}" ]]; then
+    identical=$((identical + 1))
+  else
+    diff <(printf '%s\n' "${back_frames[k]}") <(printf '%s\n' "$forward") | head -6 | sed 's/^/    /'
+  fi
+done
+case_name="-> ten times from there shows, screen for screen, what <- showed (exact replay)"
+((identical == 10)) && pass || fail "$identical of 10 screens identical"
+before=$(after Right "$forward")
+case_name="one more -> goes past the history: a new state, not rewound"
+[[ $before != *"rewound"* && $before != "${back_frames[0]}" ]] && pass || fail "$(printf '%s\n' "$before" | grep '^t ')"
 key S-Left
 sleep 0.3
 case_name="shift+left orbits the camera"
@@ -105,5 +138,50 @@ case_name="Ctrl-C ends the view with the terminal restored"
 screen | grep -q "interrupted" && pass || fail "no 'interrupted': $(screen | head -3)"
 restored && pass || fail "terminal not restored"
 
+tmux -S "$socket" kill-server 2>/dev/null || true
+socket=$scratch/tmux-4.socket
+
+# 2000 bodies: 600 saved states would take some 500 MB; under --max-memory 24 the history
+# takes what fits (the view's memory counts against the limit) and still steps back.
+cat >"$scratch/many.lua" <<'LUA'
+local w = world{gravity = vec3(0, 0, 0)}
+for i = 1, 2000 do
+  w:add(body.sphere{mass = 1, radius = 0.1, position = vec3(i % 50, i // 50, 0), velocity = vec3(0, 0.1, 0)})
+end
+return w
+LUA
+linger=1
+start -- view --max-memory 24 many.lua
+wait_for "a large world starts under --max-memory 24" '^t [0-9.]+ s  E '
+key Space
+sleep 0.5
+key Left
+wait_for "and steps back within the memory limit" 'rewound 1 of [0-9]+ steps'
+key q
+wait_exit "q ends it: status 0" 0
+tmux -S "$socket" kill-server 2>/dev/null || true
+socket=$scratch/tmux-5.socket
+
+# An articulation: a pendulum swings in art:view; <- says why it cannot step back.
+cat >"$scratch/pendulum.lua" <<'LUA'
+local a = articulation{}
+a:add_link{joint = "revolute", axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0)}
+return a
+LUA
+start -- view pendulum.lua
+wait_for "rigidlab view shows an articulation" '^t [0-9.]+ s  E .* running'
+sleep 0.3
+key Space
+sleep 0.3
+picture_a=$(settled | grep -v '^t ')
+key Right
+key Right
+sleep 0.3
+case_name="the pendulum moves"
+[[ $(settled | grep -v '^t ') != "$picture_a" ]] && pass || fail "the same picture after two steps"
+key Left
+wait_for "<- on an articulation says it cannot step back yet" 'cannot step back: no saved articulation'
+key q
+wait_exit "q ends the articulation's view" 0
 tmux -S "$socket" kill-server 2>/dev/null || true
 finish
