@@ -220,13 +220,17 @@ bool ContactConstraints::normal_bias(const Manifold& m, const Point& p, NormalMo
 
 // Gauss-Seidel updates of each point's friction within the Coulomb disk of its current normal
 // impulse (Catto 2005; Box2D v2.4 SolveVelocityConstraints): both tangents from the same
-// velocities, the pair clamped to the disk, so sliding friction lies against the slip.
-void ContactConstraints::solve_friction(Manifold& m) {
+// velocities, the pair clamped to the disk, so sliding friction lies against the slip. The
+// points are taken in the order of the sweep (forward, then backward: symmetric Gauss-Seidel),
+// as the manifolds are: in one fixed order the first corner of every face always got its
+// friction first, and a pyramid of 210 boxes, symmetric across its plane, rocked out of it
+// (its top ±1 cm in z after 10 s; now 0.6 mm).
+void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   if (!(m.friction > 0.0)) return;
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
-  for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-    Point& p = points_[k];
+  for (std::uint32_t i = 0; i < m.count; ++i) {
+    Point& p = points_[m.first + (forward ? i : m.count - 1 - i)];
     double t1 = p.tangent1.impulse - p.tangent1.mass * row_velocity(p.tangent1, a, b);
     double t2 = p.tangent2.impulse - p.tangent2.mass * row_velocity(p.tangent2, a, b);
     const double limit = m.friction * p.normal.impulse;
@@ -401,7 +405,7 @@ double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forwa
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t m = forward ? k : n - 1 - k;
-    if (mode != NormalMode::push) solve_friction(manifolds_[m]);
+    if (mode != NormalMode::push) solve_friction(manifolds_[m], forward);
     largest = std::max(largest, solve_normals(m, mode));
   }
   return largest;

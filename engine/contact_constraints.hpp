@@ -255,7 +255,7 @@ class ContactConstraints {
   void turn_to_centres(Manifold& m, const Vec3& apart);
   bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
                    Softness& soft) const;
-  void solve_friction(Manifold& m);
+  void solve_friction(Manifold& m, bool forward);
   double solve_normals(std::size_t manifold, NormalMode mode);
   // Which impulse of a point a block solve accumulates.
   enum class Impulse { sweep, round, push };
