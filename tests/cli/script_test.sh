@@ -149,7 +149,10 @@ run "require(\"rigidlab\") is the table of the globals" -- \
 expect_stdout $'true\ttrue\tstring\n'
 
 # SIGINT (Ctrl-C) stops a running script with an "interrupted!" error, as in lua, that says
-# where the script was.
+# where the script was. The file is emptied here, not by the background job's redirection: that
+# one runs after the fork, so a stale out from the case before could end the wait at once and
+# the SIGINT would reach the forked shell before rigidlab started.
+: >"$scratch/out"
 "$rigidlab" -e 'print("looping") io.stdout:flush() while true do end' \
   >"$scratch/out" 2>"$scratch/err" &
 looping=$!
@@ -165,8 +168,8 @@ expect_stderr_line 2 "stack traceback:"
 # wait_or_kill PID: waits for PID, keeping its exit status in $status; kills it after 60 s,
 # so that a test of an interruption fails instead of hanging when the interruption fails.
 wait_or_kill() {
-  # A new bash, not a subshell: a subshell killed just after its fork would run this test's
-  # EXIT trap (removing $scratch) before resetting it.
+  # Killed just after its fork, before it execs, the killer is still a copy of this shell; the
+  # EXIT trap of testlib.sh leaves $scratch alone in such a copy.
   bash -c 'sleep 60 && kill -KILL "$1"' _ "$1" >/dev/null 2>&1 &
   local killer=$!
   status=0
@@ -188,6 +191,7 @@ wait_or_kill "$looping"
 expect_status 1
 expect_stderr_line 1 "rigidlab: (command line):1: interrupted!"
 # Two SIGINTs in a row stop the REPL's chunk, not the REPL (here reading a pipe).
+: >"$scratch/out"
 {
   printf 'coroutine.wrap(function() print("looping") io.stdout:flush() while true do end end)()\n'
   sleep 2

@@ -6,7 +6,7 @@ if ! command -v tmux >/dev/null; then
 fi
 unset TMUX
 socket=$scratch/tmux.socket
-trap 'tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"' EXIT
+trap '[[ $BASHPID != "$$" ]] || { tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"; }' EXIT  # see testlib.sh
 home=$scratch/home
 mkdir "$home"
 

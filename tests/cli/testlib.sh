@@ -7,7 +7,10 @@ rigidlab=${1:?usage: $0 PATH_TO_RIGIDLAB}
 [[ -x $rigidlab ]] || { echo "not an executable: $rigidlab"; exit 1; }
 rigidlab=$(cd "$(dirname "$rigidlab")" && pwd)/$(basename "$rigidlab")  # tests change directory
 scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
+# Only this shell removes it: a background job's forked copy of this shell that is killed before
+# it execs (wait_or_kill's killer, a pipeline's brace group) would otherwise run the trap too and
+# remove the scratch folder in the middle of the test.
+trap '[[ $BASHPID != "$$" ]] || rm -rf "$scratch"' EXIT
 failures=0
 checks=0
 case_name=""
