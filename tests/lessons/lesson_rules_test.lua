@@ -134,7 +134,6 @@ local function instrumented_env(uses)
   local inertia_proxy = setmetatable({}, {__index = inertia})
   for _, name in ipairs(shape_functions) do
     inertia_proxy[name] = recorder(inertia[name], function(u, ...)
-      local options = {}
       for i = 1, select("#", ...) do
         local x = select(i, ...)
         if type(x) == "number" and x ~= 0 then u[#u + 1] = {what = "inertia." .. name .. " argument", value = x} end
@@ -145,17 +144,17 @@ local function instrumented_env(uses)
                       {__index = _G})
 end
 
-local function load_lesson(id, uses)
-  local path = lessons_dir .. "/" .. id .. ".lua"
+local function load_lesson(path, uses)
   local chunk = assert(loadfile(path, "t", instrumented_env(uses)))
   return chunk()
 end
 
 -- ---- the rules ---------------------------------------------------------------------------------
 
-local function check_lesson(id)
+-- Checks the lesson of the file `path`; raises an error that names `id` and each rule broken.
+local function check_lesson(id, path)
   local uses = {}
-  local lesson = load_lesson(id, uses)
+  local lesson = load_lesson(path, uses)
   local visible = {lesson.title}
   local sequential_logs = {}
   local problems = {}
@@ -180,7 +179,7 @@ local function check_lesson(id)
     end
   end
   for k in ipairs(lesson.steps) do
-    local alone = load_lesson(id, {})
+    local alone = load_lesson(path, {})
     local ctx = recording_ctx()
     if alone.steps[k].run then alone.steps[k].run(ctx) end
     if table.concat(ctx.log, "\n") ~= sequential_logs[k] then
@@ -192,21 +191,26 @@ end
 
 for _, id in ipairs(lesson_ids()) do
   if not os.getenv("LESSON") or os.getenv("LESSON") == id then  -- LESSON=id: only that one
-    T.case("lesson " .. id, function() check_lesson(id) end)
+    T.case("lesson " .. id, function() check_lesson(id, lessons_dir .. "/" .. id .. ".lua") end)
   end
 end
 
--- The rules themselves catch what they are for: a lesson that never gives its box's size, and
--- one whose second step depends on the first.
+-- The rules themselves catch what they are for, on lessons of tests/lessons/rules/: one that
+-- never gives its box's size, one whose second step depends on the first, and one that keeps
+-- both rules.
+local function rule_problems(id)
+  local ok, message = pcall(check_lesson, id, here .. "/rules/" .. id .. ".lua")
+  return ok and "" or message
+end
 T.case("the setup rule catches a size never shown", function()
-  local uses = {}
-  local env = instrumented_env(uses)
-  local run = load("return body.box{mass = 2, size = vec3(0.5, 0.15, 1)}", "t", "t", env)
-  run()
-  local numbers = {}
-  numbers_in("A box of 2 kg spins.", numbers)
-  T.equal(shown(uses[1].value, numbers), true, "the mass is shown")
-  T.equal(shown(uses[2].value, numbers), false, "the size is not")
+  T.equal(rule_problems("hidden-size"), "hidden-size: step 1 uses a size of 0.5 that the lesson never shows")
+end)
+T.case("the standing-alone rule catches a step that depends on the one before", function()
+  T.equal(rule_problems("dependent-steps"),
+          "dependent-steps: step 2 shows other values alone than after the steps before it")
+end)
+T.case("a lesson that keeps both rules passes", function()
+  T.equal(rule_problems("keeps-rules"), "")
 end)
 
 T.finish()
