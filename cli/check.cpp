@@ -191,12 +191,14 @@ void print_problem(const std::string& problem) {
   print_result(result);
 }
 
-// The lessons an argument names: a folder's (DIR), or one (ID, FILE). False after a usage
-// error's message.
+// The lessons an argument names: a folder's (DIR), or one (ID, FILE). A name without a slash
+// is a folder when it is one and no lesson has it as id (a teacher in the folder above writes
+// `rigidlab check course`). False after a usage error's message.
 bool add_lessons(const LessonCatalog& catalog, const std::string& name,
                  std::vector<LessonFile>& lessons) {
   std::error_code code;
-  if (name.find('/') != std::string::npos && fs::is_directory(name, code)) {
+  const bool slash = name.find('/') != std::string::npos;
+  if ((slash || catalog.find(name) == nullptr) && fs::is_directory(name, code)) {
     std::string error;
     if (folder_lessons(catalog, name, lessons, error)) return true;
     std::fprintf(stderr, "rigidlab: %s\n", error.c_str());

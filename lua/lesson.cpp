@@ -180,7 +180,10 @@ bool report_check(lua_State* L, LessonContext& context, const std::string& label
   const bool ok = problem.empty();
   const std::string mark = ok ? "  ✓ " : "  ✗ ";
   std::string detail;
-  if (!ok)
+  // A reason that only repeats the values ("got false, want true" of two booleans) is left
+  // out, and the tolerance with it: it says nothing about such values.
+  const bool repeats_values = problem == "got " + got + ", want " + want;
+  if (!ok && !repeats_values)
     detail = " (" + problem + (note.empty() ? "" : "; " + note) + ")";
   else if (!note.empty())
     detail = " (" + note + ")";

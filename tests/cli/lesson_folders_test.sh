@@ -66,8 +66,20 @@ grep -q "particle-system" "$scratch/out" && fail "a built-in lesson was checked"
 expect_stdout_contains "ok   intro                        5/5 checks"
 expect_stdout_contains "✗ t: got {a = 1}, want {a = 2} (key a: off by 1; tolerance rel 1e-09)"
 expect_stdout_contains "✗ s: got \"abc\", want \"abd\" (strings differ at character 3)"
+run "check DIR with a folder name of the working folder, no slash" -- \
+  env RIGIDLAB_LESSONS="$course" bash -c 'cd "$1" && "$2" check course' _ "$scratch" "$rigidlab"
+expect_status 1
+expect_stdout_contains "1 passed, 1 failed"
+mkdir "$scratch/spring"
+run "a lesson id is the lesson, not a folder of that name" -- \
+  bash -c 'cd "$1" && "$2" check spring' _ "$scratch" "$rigidlab"
+expect_status 0
+expect_stdout_contains "ok   spring "
+rmdir "$scratch/spring"
 run "a folder not in RIGIDLAB_LESSONS is checked in the sandbox" -- "$rigidlab" check "$course"
 expect_stdout_contains "✗ io is there: got false, want true"
+case_name="a reason that repeats the values is left out"
+grep -q "want true (" "$scratch/out" && fail "$(grep 'io is there' "$scratch/out")" || pass
 
 # ---- an id defined twice -----------------------------------------------------------------------
 cp "$built_in/spring.lua" "$course/spring.lua"

@@ -101,6 +101,7 @@ TEST_F(LessonContextTest, StringsBooleansAndNilAreExact) {
   verdict(R"(ctx:expect("b", true, true))", true);
   verdict(R"(ctx:expect("b", false, false))", true);
   verdict(R"(ctx:expect("b", true, false))", false, "got true, want false");
+  EXPECT_EQ(output.text, "  ✗ b: got true, want false\n") << "the reason is not the values again";
   verdict(R"(ctx:expect("b", 1, true))", false, "got a number, want a boolean");
   verdict(R"(ctx:expect("n", nil, nil))", true);
   verdict(R"(ctx:expect("n", nil, false))", false, "got nil, want a boolean");
