@@ -415,5 +415,31 @@ still keeps T within the same 2e-4: its error oscillates, it does not drift.]],
                    math.abs(last - first), 0, {abs = 0.05 * long.worst_T})
       end,
     },
+    {
+      title = "Watch it flip",
+      text = [[
+The same box (1 kg, 0.5 × 0.15 × 1 m, at rest at the origin, ω = (10, 0.01, 0.01) rad/s)
+in the default world at 60 Hz, drawn from t = 1.0 s to 1.9 s, around the first flip of
+step 2's schedule. The arrows: L (angular momentum), ω, and the box's own axes x, y, z.
+L never moves. Before the flip the box spins about its x axis, which points along L; during
+the flip ω leaves x and the box turns over; after it the box spins about x again, but x
+now points against L. In a terminal, rigidlab view shows it live (w:view).]],
+      formula = "x̂·L̂: +1 before the flip, −1 after it;   L constant",
+      run = function(ctx)
+        local w, b = spinning_box({}, vec3(spin_rate, 0, 0) + nudge)
+        w:step(frame, 60)
+        local function along_L()
+          local L = w:angular_momentum()
+          return b.orientation:rotate(vec3(1, 0, 0)):dot(L) / L:norm()
+        end
+        local L0, before = w:angular_momentum(), along_L()
+        ctx:motion(w, {seconds = 0.9, frames = 4, dt = frame, show = {"frames", "L", "omega"}})
+        ctx:show("x̂·L̂ at t = 1.0 s and 1.9 s", {before, along_L()})
+        ctx:expect_range("before: x points along L", before, 0.9, nil)
+        ctx:expect_range("after: x points against L", along_L(), nil, -0.9)
+        ctx:expect("L at 1.9 s = L at 1.0 s (relative change)", (w:angular_momentum() - L0):norm() / L0:norm(), 0,
+                   {abs = 1e-9})
+      end,
+    },
   },
 }

@@ -197,5 +197,40 @@ stopping it: the contact would slide back at 1.1 times its old speed.]],
         ctx:expect("001's impulse reverses the slip: 1 − 0.6·3.5 = −1.1", slip_after, -1.1)
       end,
     },
+    {
+      title = "Watch it bounce",
+      text = [[
+The ball of step 1 (1 kg, radius 0.35 m, e = 0.75, μ = 0.6, its bottom 2 m above the floor,
+its centre at x = -1.5 m)
+thrown sideways at 1 m/s, in a world at 60 Hz, drawn every 0.8 s with the path of its
+centre behind it. Each arc is lower than the one before, by e² = 0.5625 in height;
+friction makes the ball spin at every touch (the great circles drawn on it turn). In a
+terminal, rigidlab view shows it live (w:view).]],
+      formula = "apex after a bounce = e²·(height before);   E never rises",
+      run = function(ctx)
+        local w = world{}
+        w:add_plane{normal = vec3(0, 1, 0), offset = 0, restitution = restitution,
+                    friction = friction}
+        local ball = w:add(body.sphere{mass = mass, radius = radius, restitution = restitution,
+                                       friction = friction,
+                                       position = vec3(-1.5, radius + drop_height, 0),
+                                       velocity = vec3(1, 0, 0)})
+        local E0 = w:energy()
+        local rec = w:record{}
+        ctx:motion(w, {seconds = 2.4, frames = 4, dt = 1 / 60, show = "trail",
+                       camera = {eye = vec3(-0.3, 1.5, 4.5), target = vec3(-0.3, 1.1, 0)}})
+        rec:stop()
+        -- The first apex: the highest point after the ball first moved up.
+        local heights, apex, rising = rec:series("position", ball), nil, false
+        for k = 2, #heights do
+          if heights[k].y > heights[k - 1].y then rising = true end
+          if rising then apex = math.max(apex or 0, heights[k].y - radius) end
+        end
+        local seen = 9.81 * (1 / 60) ^ 2 / 8      -- an apex is seen up to g Δt²/8 low (step 1)
+        ctx:show("first apex after the bounce (m)", apex)
+        ctx:expect("apex = e²·2 m", apex, restitution ^ 2 * drop_height, {abs = 2 * seen})
+        ctx:expect_range("energy after 2.4 s (J), never above E₀", w:energy(), nil, E0)
+      end,
+    },
   },
 }

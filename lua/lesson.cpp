@@ -14,6 +14,7 @@
 #include "lua/modules.hpp"
 #include "lua/output_file.hpp"
 #include "lua/plot.hpp"
+#include "lua/render.hpp"
 #include "lua/text_layout.hpp"
 #include "present/file.hpp"
 #include "present/svg_chart.hpp"
@@ -549,6 +550,13 @@ const Entry context_methods[] = {
     {"table", guarded<context_table>, "ctx:table", "ctx:table(columns, rows)",
      "Prints an aligned table: columns a list of headings, rows a list of lists."},
     {"say", guarded<context_say>, "ctx:say", "ctx:say(text)", "Prints a line of explanation."},
+    {"motion", guarded<context_motion>, "ctx:motion",
+     "ctx:motion(w [, {seconds =, frames =, dt =, show =, camera =, height =, ascii =}])",
+     "Steps the world (or articulation) w for seconds (default 2) in steps of dt (default\n"
+     "1/60 s) and shows frames (default 4) evenly spaced over that time, w's state now the\n"
+     "first, as a film strip fitted to the lesson's width: one camera frames the whole motion;\n"
+     "show and camera as for w:render. No colour; ASCII when the terminal is not UTF-8 or\n"
+     "ascii = true. In check mode it only steps (the state after it is the same)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry context_metamethods[] = {

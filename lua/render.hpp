@@ -54,4 +54,9 @@ const char* missing_articulation_overlay(const RenderRequest& request, bool trai
 // overlays asked for, drawn through the camera asked for.
 std::string render_world(lua_State* L, int world, const RenderRequest& request);
 
+// ctx:motion(object [, {seconds =, frames =, dt =, show =, camera =, height =, ascii =}]):
+// steps the world or articulation and shows a film strip of its frames in the lesson
+// (lua/render_motion.cpp); a method of the lesson's ctx (lua/lesson.cpp registers it).
+int context_motion(lua_State* L);
+
 }  // namespace rigidlab::lua

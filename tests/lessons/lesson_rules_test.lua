@@ -58,6 +58,12 @@ local function recording_ctx()
   function ctx:expect(label, got, want) keep(label, got, want) return true end
   function ctx:expect_range(label, got, low, high) keep(label, got, low, high) return true end
   function ctx:plot(spec) keep(spec.title or "", spec.x_label or "", spec.y_label or "") end
+  function ctx:motion(object, options)  -- steps as ctx:motion does (lua/render_motion.cpp)
+    options = options or {}
+    local frames, seconds, dt = options.frames or 4, options.seconds or 2, options.dt or 1 / 60
+    local per_frame = math.max(1, math.floor(seconds / math.max(frames - 1, 1) / dt + 0.5))
+    for _ = 2, frames do object:step(dt, per_frame) end
+  end
   return ctx
 end
 

@@ -158,4 +158,29 @@ T.case("export_html runs the world on and writes one page", function()
   T.fails(function() w:export_html(path, {dt = 0}) end, "field 'dt'")
 end)
 
+T.case("ctx:motion steps as w:step does, and checks everything first", function()
+  local ctx = lesson_context()
+  local w, b = spinning_box()
+  local twin, twin_body = spinning_box()
+  T.fails(function() ctx:motion(w, {frames = 0}) end,
+    "bad argument #2 to 'ctx:motion' (field 'frames' must be an integer from 1 to 12, got 0)")
+  T.fails(function() ctx:motion(w, {seconds = -1}) end, "field 'seconds' must be from 0.001 to 600")
+  T.fails(function() ctx:motion(w, {frame = 3}) end, "unknown field 'frame'")
+  T.fails(function() ctx:motion(w, {show = "omegas"}) end, "field 'show' must be one of")
+  T.fails(function() ctx:motion(42) end, "bad argument #1 to 'ctx:motion' (world or articulation expected")
+  T.fails(function() ctx.motion(42, w) end, "lesson context expected")
+  local art = articulation{gravity = vec3(0, 0, 0)}
+  art:add_link{joint = "revolute", axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0)}
+  T.fails(function() ctx:motion(art, {show = "L"}) end, "'L' is not drawn for articulations")
+  T.equal(w.time, 0, "a refused call stepped nothing")
+  -- 3 intervals of round(0.5 / (1/60)) = 30 steps: the state w:step(1/60, 90) reaches.
+  ctx:motion(w, {seconds = 1.5, frames = 4, ascii = true, show = {"omega", "trail"}})
+  twin:step(1 / 60, 90)
+  T.equal(w.time, twin.time, "time")
+  T.equal(b.orientation, twin_body.orientation, "orientation, bit for bit")
+  T.equal(b.angular_velocity, twin_body.angular_velocity, "ω, bit for bit")
+  ctx:motion(w, {frames = 1})  -- one frame: the state now, no step
+  T.equal(w.time, twin.time, "one frame steps nothing")
+end)
+
 T.finish()

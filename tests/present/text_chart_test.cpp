@@ -8,15 +8,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "tests/present/split_lines.hpp"
+
 namespace rigidlab::present {
 namespace {
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
+using testing::split;
 
 // The code points of a line (the chart's cells are one code point each).
 std::vector<std::string> cells(const std::string& line) {
