@@ -29,8 +29,10 @@ Articulation::Articulation(BaseType base, const Vec3& base_position, const Quat&
   ws_.resize(model_);
   q_ = model_.neutral_q();
   v_ = tau_ = Eigen::VectorXd::Zero(model_.nv());
-  applied_ = qdd_ = v0_ = v_sum_ = v_;
-  q0_ = q_rate_ = q_sum_ = q_;
+  applied_ = qdd_ = v0_ = v_;
+  q0_ = q_;
+  q_slopes_.fill(q_);
+  v_slopes_.fill(v_);
 }
 
 void Articulation::check_not_stepping(const char* what) const {
@@ -61,7 +63,10 @@ int Articulation::add_link(const LinkSpec& spec) {
     tau.conservativeResize(model.nv());
     q[model.nq() - 1] = v[model.nv() - 1] = tau[model.nv() - 1] = 0.0;
   }
-  Eigen::VectorXd applied = v, qdd = v, v0 = v, v_sum = v, q0 = q, q_rate = q, q_sum = q;
+  Eigen::VectorXd applied = v, qdd = v, v0 = v, q0 = q;
+  std::array<Eigen::VectorXd, 4> q_slopes, v_slopes;
+  q_slopes.fill(q);
+  v_slopes.fill(v);
   std::swap(model_, model);
   std::swap(ws_, ws);
   q_.swap(q);
@@ -70,10 +75,9 @@ int Articulation::add_link(const LinkSpec& spec) {
   applied_.swap(applied);
   qdd_.swap(qdd);
   v0_.swap(v0);
-  v_sum_.swap(v_sum);
   q0_.swap(q0);
-  q_rate_.swap(q_rate);
-  q_sum_.swap(q_sum);
+  q_slopes_.swap(q_slopes);
+  v_slopes_.swap(v_slopes);
   return link;
 }
 

@@ -2,7 +2,8 @@
 // "Featherstone's Algorithm"): a model (engine/articulation_model.hpp), its state q, q̇ and
 // time, the joint torques held by set_torques, control functions evaluated at every stage of
 // a step (document 000 "Joint torques", "PD controller", "Muscle forces"), and a time step with
-// the world's three integrators (engine/integrators.hpp: euler, semi_implicit, rk4).
+// the world's three integrators (engine/integrators.hpp: euler, semi_implicit, rk4), stepped by
+// the engine's one integration core (engine/runge_kutta.hpp).
 //
 // Each query runs one algorithm in its own file: forward dynamics by the articulated-body
 // algorithm (engine/aba), inverse dynamics and bias forces by recursive Newton-Euler
@@ -16,6 +17,7 @@
 // same restore.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -131,8 +133,8 @@ class Articulation {
   void evaluate(Eigen::VectorXd& qdd);
   void run_controls();  // applied_ = held torques + every control's
   void step_once(double dt);
-  void euler(double dt, bool semi_implicit);
-  void rk4(double dt);
+  void integrate_step(double dt);  // one step of the integrator from (q_, v_, time_)
+  friend class ArticulationSystem;  // the state as a system of the integration core
 
   ArticulationModel model_;
   ArticulationWorkspace ws_;
@@ -142,9 +144,11 @@ class Articulation {
   std::vector<Control> controls_;
   bool stepping_ = false;
   bool in_controls_ = false;  // the controls are running: they may not evaluate themselves
-  // Scratch, sized with the model: the total applied τ, q̈, and RK4's stages.
+  // Scratch, sized with the model: the total applied τ, q̈, the state at the start of a step
+  // and the slopes of its stages (q̇ as coordinate rates, length nq; q̈, length nv).
   Eigen::VectorXd applied_, qdd_;
-  Eigen::VectorXd q0_, v0_, q_rate_, q_sum_, v_sum_;
+  Eigen::VectorXd q0_, v0_;
+  std::array<Eigen::VectorXd, 4> q_slopes_, v_slopes_;
   std::vector<std::shared_ptr<ArticulationObserver>> observers_;
 };
 

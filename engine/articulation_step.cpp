@@ -1,14 +1,14 @@
 // The time step of an articulation: the world's three integrators (engine/integrators.hpp, same
 // names and meaning) over the reduced state y = (q, q̇) with ẏ = (rates(q, q̇), q̈), q̈ from the
-// articulated-body algorithm. Kept in this one file, each integrator a few lines over
-// coordinate_rates / integrate_coordinates / evaluate, so that one integration core can later
-// serve worlds and articulations alike (issue 15, item 3).
+// articulated-body algorithm, by the engine's one integration core (engine/runge_kutta.hpp, the
+// tableaux rk::euler, rk::semi_implicit, rk::rk4) — the same code that steps a world's bodies.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "engine/articulation.hpp"
 #include "engine/format.hpp"
+#include "engine/runge_kutta.hpp"
 
 namespace rigidlab {
 namespace {
@@ -93,11 +93,7 @@ void Articulation::step_once(double dt) {
   };
   stepping_ = true;
   try {
-    switch (integrator_) {
-      case Integrator::euler: euler(dt, false); break;
-      case Integrator::semi_implicit: euler(dt, true); break;
-      case Integrator::rk4: rk4(dt); break;
-    }
+    integrate_step(dt);
   } catch (const std::domain_error& singular) {
     // A stage state that overflowed makes the algorithm's pivots NaN: say what happened.
     const bool diverged = !(q_.allFinite() && v_.allFinite());
@@ -118,43 +114,42 @@ void Articulation::step_once(double dt) {
   time_ = t0 + dt;
 }
 
-// Explicit Euler: q' = q ⊕ dt q̇, q̇' = q̇ + dt q̈(q, q̇) (003 "Explicit Euler");
-// semi-implicit (symplectic) Euler: q̇' first, then q' = q ⊕ dt q̇' (the update of the table in
-// 003 "Explicit Euler"; Hairer, Lubich, Wanner, "Geometric Numerical Integration" I.1).
-void Articulation::euler(double dt, bool semi_implicit) {
-  evaluate(qdd_);
-  if (semi_implicit) {
-    v_ += dt * qdd_;
-    integrate_coordinates(model_, q_, v_, dt);
-  } else {
-    integrate_coordinates(model_, q_, v_, dt);
-    v_ += dt * qdd_;
+// The articulation's state as a system of the integration core (engine/runge_kutta.hpp): the
+// position slope of a stage is coordinate_rates (a free base's quaternion as a 4-vector,
+// q̇ = ½ (0, ω) ⊗ q, as the world's rk4 integrates it), the velocity slope q̈ from the
+// articulated-body algorithm with the held torques and the controls at the stage time. Rates
+// are taken at the raw stage quaternion; the dynamics at the normalised one. With euler, q' =
+// q + dt q̇ is then normalised; semi_implicit takes the rates at (q, q̇') (003 "Explicit Euler";
+// Hairer, Lubich, Wanner, "Geometric Numerical Integration" I.1); rk4 is 003 "Fourth-Order
+// Runge-Kutta". step_once has saved (q₀, q̇₀) and restores them on any failure.
+class ArticulationSystem {
+ public:
+  explicit ArticulationSystem(Articulation& art) : a_(art) {}
+  void begin() {}
+  void slope(int i, double t, bool velocity) {
+    a_.time_ = t;
+    coordinate_rates(a_.model_, a_.q_, a_.v_, a_.q_slopes_[i]);
+    normalize_base_orientation(a_.model_, a_.q_);
+    if (velocity) a_.evaluate(a_.v_slopes_[i]);
   }
-}
+  bool move(double h, const double* aq, const double* av, int count) {
+    rk::combine(a_.q_, a_.q0_, h, aq, a_.q_slopes_, count);
+    rk::combine(a_.v_, a_.v0_, h, av, a_.v_slopes_, count);
+    return true;
+  }
 
-// Classical RK4 on y = (q, q̇) (003 "Fourth-Order Runge-Kutta"): stage states y0 + c dt k,
-// slopes k = (rates, q̈), y' = y0 + dt/6 (k1 + 2k2 + 2k3 + k4). A free base's quaternion is
-// integrated as a 4-vector and normalised at the end, as the world's rk4 does; each stage is
-// evaluated (controls included) at the normalised orientation and at time t0 + c dt.
-void Articulation::rk4(double dt) {
+ private:
+  Articulation& a_;
+};
+
+void Articulation::integrate_step(double dt) {
+  ArticulationSystem system(*this);
   const double t0 = time_;
-  coordinate_rates(model_, q_, v_, q_rate_);  // k1
-  evaluate(qdd_);
-  q_sum_ = q_rate_;
-  v_sum_ = qdd_;
-  const double c[3] = {0.5, 0.5, 1.0}, weight[3] = {2.0, 2.0, 1.0};
-  for (int stage = 0; stage < 3; ++stage) {  // k2, k3, k4 from the previous slope
-    q_ = q0_ + (c[stage] * dt) * q_rate_;
-    v_ = v0_ + (c[stage] * dt) * qdd_;
-    time_ = t0 + c[stage] * dt;
-    coordinate_rates(model_, q_, v_, q_rate_);
-    normalize_base_orientation(model_, q_);
-    evaluate(qdd_);
-    q_sum_ += weight[stage] * q_rate_;
-    v_sum_ += weight[stage] * qdd_;
+  switch (integrator_) {
+    case Integrator::euler: rk::runge_kutta(rk::euler, system, t0, dt); break;
+    case Integrator::semi_implicit: rk::runge_kutta(rk::semi_implicit, system, t0, dt); break;
+    case Integrator::rk4: rk::runge_kutta(rk::rk4, system, t0, dt); break;
   }
-  q_ = q0_ + (dt / 6.0) * q_sum_;
-  v_ = v0_ + (dt / 6.0) * v_sum_;
   normalize_base_orientation(model_, q_);
   time_ = t0;
 }

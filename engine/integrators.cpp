@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "engine/free_rotation.hpp"
+#include "engine/runge_kutta.hpp"
 
 namespace rigidlab {
 namespace {
@@ -160,12 +161,7 @@ std::size_t euler_family_step(std::vector<Body>& bodies, const Vec3& gravity,
 // The time derivative of one body's state (the ODE in integrators.hpp). `q` is the raw stage
 // quaternion: its normalised rotation gives R, and q̇ = ½ (0, ω) ⊗ q uses it as it is, so the
 // quaternion is integrated as a plain 4-vector.
-struct Slope {
-  Vec3 velocity;          // ẋ
-  Vec4 orientation;       // q̇ (x, y, z, w coefficients, Eigen's order)
-  Vec3 acceleration;      // v̇
-  Vec3 angular_acceleration;  // ω̇
-};
+using Slope = BodySlope;
 
 Slope slope(const Body& b, const Vec3& velocity, const Quat& q, const Vec3& angular_velocity,
             const Vec3& force, const Vec3& torque, const Vec3& gravity) {
@@ -182,86 +178,138 @@ Slope slope(const Body& b, const Vec3& velocity, const Quat& q, const Vec3& angu
   return k;
 }
 
-Quat add(const Quat& q, double scale, const Vec4& dq) {
-  Quat result;
-  result.coeffs() = q.coeffs() + scale * dq;
-  return result;
-}
+// The world's state as a system of the integration core (engine/runge_kutta.hpp), per body
+// y = (x, q, v, ω) with the slope of `slope` above; the quaternion is a 4-vector in the sums
+// and normalised whenever it is written into a body (its raw value is kept for q̇).
 
-// RK4 of one body whose force and torque stay constant over the step: the slopes depend only
-// on (v, q, ω), so the four stages run in registers.
-RIGIDLAB_FLATTEN void rk4_constant_forces(Body& b, const Vec3& gravity, double dt) {
-  const double half = 0.5 * dt;
-  const Vec3& v = b.velocity;
-  const Vec3& w = b.angular_velocity;
-  const Quat& q = b.orientation;
-  const Slope k1 = slope(b, v, q, w, b.force, b.torque, gravity);
-  const Slope k2 = slope(b, v + half * k1.acceleration, add(q, half, k1.orientation),
-                         w + half * k1.angular_acceleration, b.force, b.torque, gravity);
-  const Slope k3 = slope(b, v + half * k2.acceleration, add(q, half, k2.orientation),
-                         w + half * k2.angular_acceleration, b.force, b.torque, gravity);
-  const Slope k4 = slope(b, v + dt * k3.acceleration, add(q, dt, k3.orientation),
-                         w + dt * k3.angular_acceleration, b.force, b.torque, gravity);
-  const double sixth = dt / 6.0;
-  b.position += sixth * (k1.velocity + 2.0 * (k2.velocity + k3.velocity) + k4.velocity);
-  b.orientation = add(q, sixth, k1.orientation + 2.0 * (k2.orientation + k3.orientation) +
-                                    k4.orientation);
-  b.orientation = unit(b.orientation);
-  b.velocity += sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) +
-                         k4.acceleration);
-  b.angular_velocity += sixth * (k1.angular_acceleration +
-                                 2.0 * (k2.angular_acceleration + k3.angular_acceleration) +
-                                 k4.angular_acceleration);
-  b.force = Vec3::Zero();
-  b.torque = Vec3::Zero();
-}
-
-// Writes base + h·(dx, dq, dv, dω) into the body as a stage (or final) state: the raw
-// quaternion goes to `stage_q`, the body gets it normalised; forces are reset to the ones
-// applied before the step (the caller zeroes them after the last stage).
-void write_state(Body& b, const BodyState& base, double h, const Vec3& dx, const Vec4& dq,
-                 const Vec3& dv, const Vec3& dw, Quat& stage_q) {
-  b.position = base.position + h * dx;
-  b.velocity = base.velocity + h * dv;
-  b.angular_velocity = base.angular_velocity + h * dw;
-  stage_q = add(base.orientation, h, dq);
-  b.orientation = unit(stage_q);
-  b.force = base.force;
-  b.torque = base.torque;
-}
-
-// One stage of the staged RK4: the slope at the state the bodies hold is added to the
-// weighted sum, then the next stage's state base + c·dt·slope is written into the bodies, or
-// after the fourth stage the final state base + dt/6 · sum. Returns the index of the first body
-// whose written state is not finite, or all_finite.
-RIGIDLAB_FLATTEN std::size_t rk4_stage(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws,
-                      int stage, double dt) {
-  double probe = 0.0;  // becomes NaN when any written state component is NaN or infinite
-  static constexpr double weights[] = {1.0, 2.0, 2.0, 1.0};
-  static constexpr double next_offsets[] = {0.5, 0.5, 1.0};
-  const double weight = weights[stage];
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    Body& b = bodies[i];
-    if (b.inverse_mass == 0.0) continue;
-    const Slope k = slope(b, b.velocity, ws.stage_q[i], b.angular_velocity, b.force, b.torque,
-                          gravity);
-    BodyState& sum = ws.sum[i];
-    sum.position += weight * k.velocity;
-    sum.orientation.coeffs() += weight * k.orientation;
-    sum.velocity += weight * k.acceleration;
-    sum.angular_velocity += weight * k.angular_acceleration;
-    if (stage < 3)
-      write_state(b, ws.base[i], next_offsets[stage] * dt, k.velocity, k.orientation,
-                  k.acceleration, k.angular_acceleration, ws.stage_q[i]);
-    else {
-      write_state(b, ws.base[i], dt / 6.0, sum.position, sum.orientation.coeffs(), sum.velocity,
-                  sum.angular_velocity, ws.stage_q[i]);
-      b.force = Vec3::Zero();
-      b.torque = Vec3::Zero();
-    }
-    probe += 0.0 * state_sum(b);
+// One body whose force and torque stay constant over the step: the slopes depend only on
+// (v, q, ω), so the stages run in registers (the world's fast path for rk4, bench/world_bench).
+// The position x enters no slope, so only the last move (count = S: the result) computes it.
+template <int S>
+class ConstantForceBody {
+ public:
+  ConstantForceBody(Body& b, const Vec3& gravity)
+      : b_(b), gravity_(gravity), q0_(b.orientation), v0_(b.velocity), w0_(b.angular_velocity),
+        q_(q0_), v_(v0_), w_(w0_) {}
+  void begin() {}
+  void slope(int i, double, bool) {
+    k_[i] = rigidlab::slope(b_, v_, q_, w_, b_.force, b_.torque, gravity_);
   }
-  return probe == 0.0 ? all_finite : first_non_finite(bodies);
+  bool move(double h, const double* aq, const double* av, int count) {
+    Vec4 q = q0_.coeffs();
+    v_ = v0_;
+    w_ = w0_;
+#pragma GCC unroll 4
+    for (int j = 0; j < count; ++j) {
+      if (aq[j] != 0.0) q += (h * aq[j]) * k_[j].orientation;
+      if (av[j] != 0.0) {
+        v_ += (h * av[j]) * k_[j].acceleration;
+        w_ += (h * av[j]) * k_[j].angular_acceleration;
+      }
+    }
+    q_.coeffs() = q;
+    if (count == S) finish(h, aq);
+    return true;
+  }
+
+ private:
+  // The result into the body; its force and torque are consumed.
+  void finish(double h, const double* bq) {
+    Vec3 x = b_.position;
+#pragma GCC unroll 4
+    for (int j = 0; j < S; ++j)
+      if (bq[j] != 0.0) x += (h * bq[j]) * k_[j].velocity;
+    b_.position = x;
+    b_.orientation = unit(q_);
+    b_.velocity = v_;
+    b_.angular_velocity = w_;
+    b_.force = Vec3::Zero();
+    b_.torque = Vec3::Zero();
+  }
+
+  Body& b_;
+  const Vec3& gravity_;
+  const Quat q0_;
+  const Vec3 v0_, w0_;
+  Quat q_;  // raw (un-normalised) stage quaternion
+  Vec3 v_, w_;
+  Slope k_[S];
+};
+
+// All bodies, with state-dependent forces: `evaluate_forces(t)` runs before every slope, on
+// the stage state written into the bodies (orientation normalised) with each body's force and
+// torque reset to what was applied before the step. A stage state that is not finite stops the
+// step before the force elements (user callbacks among them) can see it: they would read, and
+// could store, infinities. One pass over the bodies per stage: slope(i) only runs the force
+// elements; the next move computes each body's slope kᵢ just before moving that body (a
+// body's slope depends on its own state and forces alone). The last move (count = S) writes
+// the result and consumes the applied forces.
+template <int S>
+class WorldBodies {
+ public:
+  WorldBodies(std::vector<Body>& bodies, const Vec3& gravity, Rk4Workspace& ws,
+              const std::function<void(double)>& evaluate_forces, BodyState* save_to)
+      : bodies_(bodies), gravity_(gravity), ws_(ws), evaluate_forces_(evaluate_forces),
+        save_to_(save_to) {}
+  void begin() {
+    const std::size_t n = bodies_.size();
+    ws_.base.resize(n);
+    ws_.stage_q.resize(n);
+    ws_.slopes.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      ws_.base[i] = state_of(bodies_[i]);
+      if (save_to_ != nullptr) save_to_[i] = ws_.base[i];
+      ws_.stage_q[i] = bodies_[i].orientation;
+    }
+  }
+  void slope(int, double t, bool) { evaluate_forces_(t); }
+  RIGIDLAB_FLATTEN bool move(double h, const double* aq, const double* av, int count) {
+    double probe = 0.0;  // becomes NaN when any written state component is NaN or infinite
+    const bool last = count == S;
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      Body& b = bodies_[i];
+      if (b.inverse_mass == 0.0) continue;
+      Slope* k = ws_.slopes[i].data();
+      k[count - 1] = rigidlab::slope(b, b.velocity, ws_.stage_q[i], b.angular_velocity, b.force,
+                                     b.torque, gravity_);
+      const BodyState& base = ws_.base[i];
+      Vec4 q = base.orientation.coeffs();
+      b.position = base.position;
+      b.velocity = base.velocity;
+      b.angular_velocity = base.angular_velocity;
+      for (int j = 0; j < count; ++j) {
+        if (aq[j] != 0.0) {
+          b.position += (h * aq[j]) * k[j].velocity;
+          q += (h * aq[j]) * k[j].orientation;
+        }
+        if (av[j] != 0.0) {
+          b.velocity += (h * av[j]) * k[j].acceleration;
+          b.angular_velocity += (h * av[j]) * k[j].angular_acceleration;
+        }
+      }
+      ws_.stage_q[i].coeffs() = q;
+      b.orientation = unit(ws_.stage_q[i]);
+      b.force = last ? Vec3::Zero() : base.force;
+      b.torque = last ? Vec3::Zero() : base.torque;
+      probe += 0.0 * state_sum(b);
+    }
+    first_bad_ = probe == 0.0 ? all_finite : first_non_finite(bodies_);
+    return first_bad_ == all_finite;
+  }
+  std::size_t first_bad() const { return first_bad_; }
+
+ private:
+  std::vector<Body>& bodies_;
+  const Vec3& gravity_;
+  Rk4Workspace& ws_;
+  const std::function<void(double)>& evaluate_forces_;
+  BodyState* save_to_;
+  std::size_t first_bad_ = all_finite;
+};
+
+RIGIDLAB_FLATTEN void rk4_constant_forces(Body& b, const Vec3& gravity, double dt) {
+  ConstantForceBody<rk::rk4.stages> system(b, gravity);
+  rk::runge_kutta(rk::rk4, system, 0.0, dt);
 }
 
 }  // namespace
@@ -307,26 +355,9 @@ std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, d
     }
     return first_bad;
   }
-  ws.base.resize(n);
-  ws.stage_q.resize(n);
-  ws.sum.resize(n);
-  const BodyState zero{Vec3::Zero(), Quat(0, 0, 0, 0), Vec3::Zero(), Vec3::Zero(),
-                       Vec3::Zero(), Vec3::Zero()};
-  for (std::size_t i = 0; i < n; ++i) {
-    ws.base[i] = state_of(bodies[i]);
-    if (save_to != nullptr) save_to[i] = ws.base[i];
-    ws.stage_q[i] = bodies[i].orientation;
-    ws.sum[i] = zero;
-  }
-  static constexpr double stage_times[] = {0.0, 0.5, 0.5, 1.0};
-  for (int stage = 0; stage < 4; ++stage) {
-    evaluate_forces(t + stage_times[stage] * dt);
-    // A stage state that is not finite ends the step before the force elements (user
-    // callbacks among them) can see it: they would read, and could store, infinities.
-    first_bad = rk4_stage(bodies, gravity, ws, stage, dt);
-    if (first_bad != all_finite) return first_bad;
-  }
-  return all_finite;
+  WorldBodies<rk::rk4.stages> system(bodies, gravity, ws, evaluate_forces, save_to);
+  rk::runge_kutta(rk::rk4, system, t, dt);
+  return system.first_bad();
 }
 
 // ---- the staged step ---------------------------------------------------------------------------

@@ -16,6 +16,7 @@
 // except RK4's workspace, which grows to the number of bodies once and is then reused.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -106,15 +107,25 @@ std::size_t semi_implicit_euler_step(std::vector<Body>& bodies, const Vec3& grav
                                      GyroscopicTerm gyroscopic, double dt,
                                      BodyState* save_to = nullptr);
 
+// The time derivative of one body's state: ẋ, q̇ (a quaternion's coefficients in Eigen's
+// x, y, z, w order), v̇ and ω̇.
+struct BodySlope {
+  Vec3 velocity;
+  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> orientation;
+  Vec3 acceleration;
+  Vec3 angular_acceleration;
+};
+
 // Scratch storage of rk4_step, kept by the world so a step does not allocate.
 struct Rk4Workspace {
   std::vector<BodyState> base;   // y_n and the forces applied before the step
   std::vector<Quat> stage_q;     // un-normalised stage quaternions (4-vectors)
-  std::vector<BodyState> sum;    // k1 + 2 k2 + 2 k3 + k4 (position = ẋ, orientation = q̇, ...)
+  std::vector<std::array<BodySlope, 4>> slopes;  // k1..k4 of every body
 };
 
 // Classical fourth-order Runge-Kutta on the whole state y = (x, q, v, ω) with the ODE above
-// (003_* "Fourth-Order Runge-Kutta"); the quaternion is integrated as a 4-vector with
+// (003_* "Fourth-Order Runge-Kutta"), by the engine's one integration core
+// (engine/runge_kutta.hpp, the tableau rk::rk4); the quaternion is integrated as a 4-vector with
 // q̇ = ½ (0, ω) ⊗ q and normalised once at the end of the step; the gyroscopic term is always
 // included. Order 4.
 //

@@ -1,4 +1,5 @@
-// One step of the classic explicit integrators, as free functions, for
+// One step of the classic explicit integrators, as free functions over the engine's one
+// integration core (engine/runge_kutta.hpp), for
 //   - a second-order system x'' = a(t, x, v) (a particle, or any mass-spring-like system), and
 //   - a first-order system y' = f(t, y).
 // The state type is a double, a Vec3 or an Eigen::VectorXd (any type with +, - and scaling by
@@ -21,6 +22,7 @@
 #include <string_view>
 
 #include "engine/math.hpp"
+#include "engine/runge_kutta.hpp"
 
 namespace rigidlab::ode {
 
@@ -37,16 +39,50 @@ std::optional<FirstOrderMethod> parse_first_order_method(std::string_view name);
 
 // ---- second order: x'' = a(t, x, v) ------------------------------------------------------
 // `accel(t, x, v)` returns the acceleration (m/s² for a particle) as a State. Each function
-// advances (x, v) from time t to t + dt (s).
+// advances (x, v) from time t to t + dt (s), by the engine's one integration core
+// (engine/runge_kutta.hpp) with the state (x, v) and the slopes (v, a).
+
+// The system of runge_kutta() for x'' = a(t, x, v): stage states and slopes kept by value, so
+// the caller's (x, v) change only when the step has succeeded.
+template <class State, class Accel, int S>
+class SecondOrderSystem {
+ public:
+  SecondOrderSystem(const State& x, const State& v, Accel& accel)
+      : x0_(x), v0_(v), x_(x), v_(v), accel_(accel) {}
+  void begin() {}
+  void slope(int i, double t, bool velocity) {
+    kx_[i] = v_;
+    if (velocity) kv_[i] = accel_(t, x_, v_);
+  }
+  bool move(double h, const double* aq, const double* av, int count) {
+    rk::combine(x_, x0_, h, aq, kx_, count);
+    rk::combine(v_, v0_, h, av, kv_, count);
+    return true;
+  }
+  const State& x() const { return x_; }
+  const State& v() const { return v_; }
+
+ private:
+  const State x0_, v0_;
+  State x_, v_;
+  State kx_[S], kv_[S];
+  Accel& accel_;
+};
+
+template <int S, class State, class Accel>
+void second_order_step(const rk::Tableau<S>& method, double t, State& x, State& v, double dt,
+                       Accel& accel) {
+  SecondOrderSystem<State, Accel, S> system(x, v, accel);
+  rk::runge_kutta(method, system, t, dt);
+  x = system.x();
+  v = system.v();
+}
 
 // Explicit (forward) Euler: both updates use the state at the start of the step,
 //   x_{n+1} = x_n + Δt v_n,   v_{n+1} = v_n + Δt a(t_n, x_n, v_n).   Order 1.
 template <class State, class Accel>
 void euler_step(double t, State& x, State& v, double dt, Accel&& accel) {
-  const State a = accel(t, x, v);
-  const State x_next = x + dt * v;
-  v = v + dt * a;
-  x = x_next;
+  second_order_step(rk::euler, t, x, v, dt, accel);
 }
 
 // Semi-implicit (symplectic) Euler: velocity first, then the position from the new velocity,
@@ -54,27 +90,14 @@ void euler_step(double t, State& x, State& v, double dt, Accel&& accel) {
 // keeps the energy of an oscillator bounded (Hairer et al. I.1); 003_* "Explicit Euler" table.
 template <class State, class Accel>
 void semi_implicit_euler_step(double t, State& x, State& v, double dt, Accel&& accel) {
-  const State v_next = v + dt * accel(t, x, v);
-  x = x + dt * v_next;
-  v = v_next;
+  second_order_step(rk::semi_implicit, t, x, v, dt, accel);
 }
 
 // Classical RK4 on the first-order form (x, v)' = (v, a(t, x, v)) (003_* "Fourth-Order
 // Runge-Kutta"): the position slopes of stages 2-4 are the stage velocities. Order 4.
 template <class State, class Accel>
 void rk4_step(double t, State& x, State& v, double dt, Accel&& accel) {
-  const double half = 0.5 * dt;
-  const State& k1x = v;
-  const State k1v = accel(t, x, v);
-  const State k2x = v + half * k1v;
-  const State k2v = accel(t + half, State(x + half * k1x), k2x);
-  const State k3x = v + half * k2v;
-  const State k3v = accel(t + half, State(x + half * k2x), k3x);
-  const State k4x = v + dt * k3v;
-  const State k4v = accel(t + dt, State(x + dt * k3x), k4x);
-  const State x_next = x + (dt / 6.0) * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
-  v = v + (dt / 6.0) * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-  x = x_next;
+  second_order_step(rk::rk4, t, x, v, dt, accel);
 }
 
 // One step of `method`.
@@ -88,39 +111,58 @@ void step(SecondOrderMethod method, double t, State& x, State& v, double dt, Acc
 }
 
 // ---- first order: y' = f(t, y) -------------------------------------------------------------
-// `f(t, y)` returns dy/dt as a State. Each function returns y at t + dt.
+// `f(t, y)` returns dy/dt as a State. Each function returns y at t + dt: the core with the
+// state y alone (its position part; the velocity weights of these tableaux are the same).
+
+template <class State, class F, int S>
+class FirstOrderSystem {
+ public:
+  FirstOrderSystem(const State& y, F& f) : y0_(y), y_(y), f_(f) {}
+  void begin() {}
+  void slope(int i, double t, bool) { k_[i] = f_(t, y_); }
+  bool move(double h, const double* a, const double*, int count) {
+    rk::combine(y_, y0_, h, a, k_, count);
+    return true;
+  }
+  const State& y() const { return y_; }
+
+ private:
+  const State y0_;
+  State y_;
+  State k_[S];
+  F& f_;
+};
+
+template <int S, class State, class F>
+State first_order_step(const rk::Tableau<S>& method, double t, const State& y, double dt, F& f) {
+  FirstOrderSystem<State, F, S> system(y, f);
+  rk::runge_kutta(method, system, t, dt);
+  return system.y();
+}
 
 // Forward Euler: y_{n+1} = y_n + Δt f(t_n, y_n). Order 1.
 template <class State, class F>
 State euler_step(double t, const State& y, double dt, F&& f) {
-  return State(y + dt * f(t, y));
+  return first_order_step(rk::euler, t, y, dt, f);
 }
 
 // Explicit midpoint: y_{n+1} = y_n + Δt f(t_n + Δt/2, y_n + Δt/2 f(t_n, y_n)). Order 2.
 template <class State, class F>
 State midpoint_step(double t, const State& y, double dt, F&& f) {
-  const State k1 = f(t, y);
-  return State(y + dt * f(t + 0.5 * dt, State(y + (0.5 * dt) * k1)));
+  return first_order_step(rk::midpoint, t, y, dt, f);
 }
 
 // Heun (explicit trapezoid): k1 = f(t_n, y_n), k2 = f(t_n + Δt, y_n + Δt k1),
 // y_{n+1} = y_n + Δt/2 (k1 + k2). Order 2.
 template <class State, class F>
 State heun_step(double t, const State& y, double dt, F&& f) {
-  const State k1 = f(t, y);
-  const State k2 = f(t + dt, State(y + dt * k1));
-  return State(y + (0.5 * dt) * (k1 + k2));
+  return first_order_step(rk::heun, t, y, dt, f);
 }
 
 // Classical RK4 (003_* "Fourth-Order Runge-Kutta"). Order 4.
 template <class State, class F>
 State rk4_step(double t, const State& y, double dt, F&& f) {
-  const double half = 0.5 * dt;
-  const State k1 = f(t, y);
-  const State k2 = f(t + half, State(y + half * k1));
-  const State k3 = f(t + half, State(y + half * k2));
-  const State k4 = f(t + dt, State(y + dt * k3));
-  return State(y + (dt / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4));
+  return first_order_step(rk::rk4, t, y, dt, f);
 }
 
 // One step of `method`: y at t + dt.

@@ -43,7 +43,7 @@ expect_stdout_contains "wrote $scratch/handout/free-fall.md and 1 chart beside i
 expect_page_line "3 of 3 checks passed ✓"
 case_name="the transcript has what the page shows of it"
 for want in "## Step 2/2: The world falls the same way" "![Free fall](free-fall-1.svg)" \
-            "  ✓ RK4 is exact for a constant g: got 7.549516567e-15, want 0" \
+            "  ✓ RK4 is exact for a constant g: got 7.771561172e-15, want 0" \
             "  ✓ after 1 s the ball is still above the floor: got 0.095, want ≥ 0" \
             "**3 of 3 checks passed ✓**"; do
   grep -qF -- "$want" "$page" || { fail "'$want' is not on the page"; continue 2; }
