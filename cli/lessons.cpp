@@ -17,6 +17,7 @@
 #include "cli/lesson_page.hpp"
 #include "cli/limit_options.hpp"
 #include "cli/limits.hpp"
+#include "cli/terminal_echo.hpp"
 #include "cli/usage.hpp"
 #include "lua/binding.hpp"
 #include "lua/lesson.hpp"
@@ -421,6 +422,9 @@ int present_protected(lua_State* L) {
   run.page->heading(lesson.spec,
                     folder != nullptr && folder->built_in ? "" : run.catalog->origin(*run.file));
   int number = run.options->from_step;
+  // What the student types while a step runs, or as its prompt appears, is read as keys and
+  // never echoed into the lesson's text by the terminal (terminal_echo.hpp).
+  const NoEcho no_echo;
   show_step(L, run, lesson, ctx, number, clock);
   if (run.interactive) {
     step_with_keys(L, run, lesson, ctx, number, clock);

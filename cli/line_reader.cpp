@@ -7,47 +7,15 @@
 #include <cstdlib>
 #include <cstring>
 
-#include <termios.h>
-#include <unistd.h>
-
 #include "cli/completion.hpp"
 #include "cli/history_file.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/terminal_echo.hpp"
 
 namespace rigidlab::cli {
 namespace {
 
 constexpr int history_size = 1000;  // entries kept in the file
-
-// While alive, the terminal does not echo what is typed. libedit writes the prompt first and
-// only then switches the terminal to its raw mode (TCSADRAIN: after the prompt has been shown),
-// so a key typed as the prompt appears was echoed by the terminal in cooked mode: an arrow key
-// left "^[[A" on the screen, which libedit, not knowing of it, partly overwrote ("> 1+2A" for a
-// line that was "1+2"). With echo off from before the prompt, what is typed in that moment is
-// read by libedit and shown by it alone. Only the echo bits are touched, and restored as they
-// were, whatever libedit restores after the line.
-class NoEcho {
- public:
-  NoEcho() {
-    termios modes{};
-    if (tcgetattr(STDIN_FILENO, &modes) != 0) return;
-    echo_ = modes.c_lflag & (ECHO | ECHONL);
-    modes.c_lflag &= ~static_cast<tcflag_t>(ECHO | ECHONL);
-    active_ = tcsetattr(STDIN_FILENO, TCSANOW, &modes) == 0;
-  }
-  ~NoEcho() {
-    termios modes{};
-    if (!active_ || tcgetattr(STDIN_FILENO, &modes) != 0) return;
-    modes.c_lflag = (modes.c_lflag & ~static_cast<tcflag_t>(ECHO | ECHONL)) | echo_;
-    tcsetattr(STDIN_FILENO, TCSANOW, &modes);
-  }
-  NoEcho(const NoEcho&) = delete;
-  NoEcho& operator=(const NoEcho&) = delete;
-
- private:
-  tcflag_t echo_ = 0;
-  bool active_ = false;
-};
 
 class TerminalReader final : public LineReader {
  public:
@@ -67,7 +35,7 @@ class TerminalReader final : public LineReader {
     PromptInterrupt interrupt;
     char* text = nullptr;
     {
-      NoEcho no_echo;
+      const NoEcho no_echo;  // from before libedit's prompt: see terminal_echo.hpp
       text = readline(prompt);
     }
     if (interrupt.happened()) {  // Ctrl-C: drop what was typed, a fresh prompt

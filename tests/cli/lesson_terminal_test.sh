@@ -168,4 +168,20 @@ wait_for "the summary has no tick: a step failed" '^1 of 1 checks passed$'
 key Enter
 wait_exit "and the exit status is 1" 1
 
+# A key typed as the step's prompt appears, stretched by strace where it can trace (each write
+# 0.3 s late): the terminal does not echo it, the lesson shows it once ("> c", not "> cc").
+if slow=$(slow_writes 300000); then
+  fast=$rigidlab
+  rigidlab=$slow
+  start -- lesson "$fixture"
+  wait_for "slow writes: the step's prompt" "$step_prompt"
+  key c
+  wait_for "c typed as the prompt appears shows the code" '^  -- the code of step 1 '
+  case_name="and the key is shown once"
+  history | grep -qE "${step_prompt}c\$" && pass || fail "the prompt line is '$(history | grep -E "$step_prompt" | head -1)'"
+  rigidlab=$fast  # the session ends with the test: its slow writes would outlast wait_exit
+else
+  echo "strace cannot trace here: the slow-write case is skipped"
+fi
+
 finish

@@ -142,15 +142,10 @@ case_name="unwritable history: one warning on stderr"
 # The same moment made long, where strace can trace: every write of rigidlab returns 0.5 s
 # late (strace's fault injection), so Up comes while the prompt is shown and the terminal is
 # still in cooked mode. A recalled line shorter than the echoed "^[[A" showed the echo's tail.
-if command -v strace >/dev/null && strace -o /dev/null true 2>/dev/null; then
+if slow=$(slow_writes 500000); then
   printf '_HiStOrY_V2_\n7\n' >"$history"
-  cat >"$scratch/slow_writes" <<SCRIPT
-#!/bin/sh
-exec strace -o /dev/null -e trace=write -e inject=write:delay_exit=500000 '$rigidlab' "\$@"
-SCRIPT
-  chmod +x "$scratch/slow_writes"
   fast=$rigidlab
-  rigidlab=$scratch/slow_writes
+  rigidlab=$slow
   stderr_file=""
   start HOME="$home"
   wait_for "slow writes: the prompt" '^> $'

@@ -77,3 +77,16 @@ wait_prompt() {
   pass
 }
 
+# slow_writes DELAY: prints the path of a wrapper that runs $rigidlab under strace with each of
+# its writes returning DELAY µs late (strace's fault injection): the moment between a prompt
+# and the program's switch to raw input, in which a key was echoed by the terminal, made long
+# enough to type into. Returns 1 where strace is missing or may not trace.
+slow_writes() {
+  command -v strace >/dev/null && strace -o /dev/null true 2>/dev/null || return 1
+  cat >"$scratch/slow_writes" <<SCRIPT
+#!/bin/sh
+exec strace -o /dev/null -e trace=write -e inject=write:delay_exit=$1 '$rigidlab' "\$@"
+SCRIPT
+  chmod +x "$scratch/slow_writes"
+  echo "$scratch/slow_writes"
+}
