@@ -13,7 +13,8 @@ namespace rigidlab::cli {
 
 // While alive, the terminal on stdin does not echo (ECHO and ECHONL off; canonical input and
 // signals as they were). Only those bits are touched, and put back as they were at
-// construction, whatever else changed in between. Does nothing when stdin is not a terminal.
+// construction, whatever else changed in between, and at exit() if that comes first. Does
+// nothing when stdin is not a terminal.
 class NoEcho {
  public:
   NoEcho();
@@ -24,6 +25,7 @@ class NoEcho {
  private:
   tcflag_t echo_ = 0;
   bool active_ = false;
+  bool outermost_ = false;  // the one whose bits exit() puts back
 };
 
 }  // namespace rigidlab::cli

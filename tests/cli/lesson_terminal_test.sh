@@ -144,6 +144,20 @@ wait_for "m in a lesson returns to the menu" '^lesson number or id \(q quits\) >
 enter q
 wait_exit "q at the menu exits 0" 0
 
+# ---- the terminal after the lesson ------------------------------------------------------------
+# Echo is off while a lesson runs; a trusted lesson that ends the process (os.exit) leaves the
+# terminal echoing again, as the shell needs it.
+mkdir "$scratch/exits"
+cat >"$scratch/exits/exits.lua" <<'LESSON'
+return lesson{id = "exits", title = "Exits", source = "tests", steps = {
+  {title = "Exit", text = "Ends the process.", run = function(ctx) os.exit(3) end}}}
+LESSON
+tmux -S "$socket" new-session -d -x 80 -y 40 \
+  "env RIGIDLAB_LESSONS='$scratch/exits' '$rigidlab' lesson exits; stty -a >'$scratch/stty.tmp'; mv '$scratch/stty.tmp' '$scratch/stty'"
+case_name="os.exit in a lesson: the terminal echoes afterwards"
+for _ in $(seq 100); do [[ -f $scratch/stty ]] && break; sleep 0.05; done
+grep -qE '(^| )echo( |$)' "$scratch/stty" 2>/dev/null && pass || fail "stty: $(grep -oE -- '-?echo ' "$scratch/stty" 2>/dev/null)"
+
 # ---- limits and Ctrl-C -----------------------------------------------------------------------
 # The time limit of an untrusted lesson counts its steps, not the wait at the prompt: 1.5 s
 # of reading under a 1 s limit, and the next step still runs (issue 12 item 7).
