@@ -152,6 +152,7 @@ cat >"$scratch/exits/exits.lua" <<'LESSON'
 return lesson{id = "exits", title = "Exits", source = "tests", steps = {
   {title = "Exit", text = "Ends the process.", run = function(ctx) os.exit(3) end}}}
 LESSON
+socket=$scratch/tmux.exits.socket
 tmux -S "$socket" new-session -d -x 80 -y 40 \
   "env RIGIDLAB_LESSONS='$scratch/exits' '$rigidlab' lesson exits; stty -a >'$scratch/stty.tmp'; mv '$scratch/stty.tmp' '$scratch/stty'"
 case_name="os.exit in a lesson: the terminal echoes afterwards"

@@ -6,7 +6,11 @@ if ! command -v tmux >/dev/null; then
 fi
 unset TMUX
 socket=$scratch/tmux.socket
-trap '[[ $BASHPID != "$$" ]] || { tmux -S "$socket" kill-server 2>/dev/null || true; rm -rf "$scratch"; }' EXIT  # see testlib.sh
+sessions=0
+# Every tmux server of the test (one per start) ends with it; see testlib.sh for the BASHPID.
+trap '[[ $BASHPID != "$$" ]] || {
+  for server in "$scratch"/tmux*; do tmux -S "$server" kill-server 2>/dev/null || true; done
+  rm -rf "$scratch"; }' EXIT
 home=$scratch/home
 mkdir "$home"
 
@@ -18,6 +22,10 @@ stderr_file=""
 linger=""
 start() {
   rm -f "$scratch/status"
+  # A new server each time: the one whose last session just ended may still be exiting, and a
+  # new session started on its socket then fails ("server exited unexpectedly").
+  sessions=$((sessions + 1))
+  socket=$scratch/tmux.$sessions.socket
   local environment=() arguments=""
   while (($# > 0)) && [[ $1 != -- ]]; do environment+=("$1"); shift; done
   (($# > 0)) && shift
