@@ -5,10 +5,16 @@
 //   build/bench/render_bench --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <lua.hpp>
+
+#include <memory>
 #include <random>
 
 #include "engine/world.hpp"
 #include "lua/render_scene.hpp"
+#include "lua/rigidlab.hpp"
+#include "lua/view_subject.hpp"
+#include "lua/world.hpp"
 #include "present/wireframe.hpp"
 
 namespace {
@@ -56,23 +62,34 @@ void step_world(benchmark::State& state) {
   }
 }
 
-// What the live view (w:view) does per frame for 100 bodies at 160 x 48 cells: the scene with
-// ω, L and 300-point trails, one render to count the legend's lines, one at full size.
+// What the live view (w:view) does per frame for 100 bodies at 160 x 48 cells, through its
+// own code (lua/view_subject: the ring of saved states, the trails taken from it): two 60 Hz
+// steps, each saved into the ring (a frame at 30 fps), then the scene with ω, L and the last
+// 300 states as trails, one render to count the legend's lines, one at full size. The ring is
+// full and the trails at their longest from the start.
 void view_frame(benchmark::State& state) {
-  World world;
+  lua_State* L = luaL_newstate();
+  lua::open_all(L);
+  luaL_dostring(L, "return world{}");
+  World& world = lua::check_world(L, 1).world;
   fill(world, static_cast<int>(state.range(0)));
+  const std::unique_ptr<lua::ViewSubject> subject = lua::world_subject(L);
+  for (std::size_t k = 0; k < lua::history_steps; ++k) {
+    world.step(1.0 / 60);
+    subject->stepped(L);
+  }
   lua::SceneRequest request;
   request.omega = request.momentum = true;
-  request.trails.assign(world.bodies().size(), std::vector<Vec3>(300, Vec3::Zero()));
-  for (std::size_t i = 0; i < world.bodies().size(); ++i)
-    for (int k = 0; k < 300; ++k)
-      request.trails[i][k] = world.bodies()[i].position + Vec3(0.01 * k, 0, 0);
   present::RenderOptions options;
   options.width = 160;
   options.style = present::TextStyle{true, true};
-  options.camera = present::fit_camera(lua::scene_from_world(world, request), 40, 160, 45);
+  options.camera = present::fit_camera(subject->scene(L, request, true), 40, 160, 45);
   for (auto _ : state) {
-    const present::Scene scene = lua::scene_from_world(world, request);
+    for (int k = 0; k < 2; ++k) {
+      world.step(1.0 / 60);
+      subject->stepped(L);
+    }
+    const present::Scene scene = subject->scene(L, request, true);
     options.height = 1;
     std::string legend = present::render_scene(scene, options);
     options.height = 45;
@@ -80,6 +97,7 @@ void view_frame(benchmark::State& state) {
     benchmark::DoNotOptimize(legend);
     benchmark::DoNotOptimize(frame);
   }
+  lua_close(L);
 }
 
 }  // namespace
