@@ -19,8 +19,10 @@
 #include "cli/limits.hpp"
 #include "cli/terminal_echo.hpp"
 #include "cli/usage.hpp"
+#include "cli/view.hpp"
 #include "lua/binding.hpp"
 #include "lua/lesson.hpp"
+#include "lua/render.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/sandbox.hpp"
 #include "lua/text_layout.hpp"
@@ -278,6 +280,7 @@ void show_step(lua_State* L, LessonRun& run, const LoadedLesson& lesson, int ctx
   std::string error;
   StepResult& result = run.steps[static_cast<size_t>(number) - 1];
   result.ran = true;
+  lua::forget_motion(L);  // a strip the step draws (ctx:motion) can be watched live: key v
   result.error = !run_step(L, lesson, ctx, number, error);
   result.passed = run.context.passed - passed;
   result.failed = run.context.failed - failed;
@@ -325,12 +328,15 @@ void end_screen(LessonRun& run) {
     run.page->note("\nThat was the last lesson of the tour.");
 }
 
-std::string prompt(const LessonRun& run, bool at_end) {
+std::string prompt(const LessonRun& run, bool at_end, bool can_watch) {
   const bool has_next = run.file->folder >= 0 && run.catalog->next(*run.file) != nullptr;
+  const std::string watch = can_watch ? "v watch   " : "";
   if (at_end)
-    return has_next ? "[Enter] next lesson   m menu   q quit > " : "[Enter] quit   m menu > ";
-  return run.page->width() >= 60 ? "[Enter] next step   b back   c code   r again   q quit > "
-                                 : "[Enter] next   b back   q quit   ? keys > ";
+    return has_next ? "[Enter] next lesson   " + watch + "m menu   q quit > "
+                    : "[Enter] quit   " + watch + "m menu > ";
+  return run.page->width() >= 60 + static_cast<int>(watch.size())
+             ? "[Enter] next step   b back   c code   r again   " + watch + "q quit > "
+             : "[Enter] next   b back   " + watch + "q quit   ? keys > ";
 }
 
 // Steps through the lesson with the student: a key after each step (see key_help).
@@ -342,7 +348,8 @@ void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, in
     const bool at_end = number == count || run.stopped;
     if (at_end && show_end) end_screen(run);
     show_end = false;
-    run.page->write("\n" + prompt(run, at_end));
+    const bool can_watch = run.interactive && has_lesson_motion(L);
+    run.page->write("\n" + prompt(run, at_end, can_watch));
     clock.pause();
     const KeyPress key = read_key();
     clock.resume();
@@ -358,7 +365,12 @@ void step_with_keys(lua_State* L, LessonRun& run, const LoadedLesson& lesson, in
       run.next = Next::menu;
       return;
     }
-    if (letter == 'c') {
+    if (letter == 'v' && can_watch) {  // the live view: the lesson's clock waits, as at the prompt
+      std::string error;
+      clock.pause();
+      if (!view_lesson_motion(L, error)) run.page->error(clock.explain(error));
+      clock.resume();
+    } else if (letter == 'c') {
       show_code(L, run, lesson, number);
     } else if (run.stopped &&
                (letter == 'b' || letter == 'r' || key.kind == KeyPress::Kind::back)) {

@@ -2,12 +2,14 @@
 
 #include <cstdio>
 
+#include "cli/interrupt.hpp"
 #include "cli/limit_options.hpp"
 #include "cli/limits.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
 #include "lua/articulation.hpp"
 #include "lua/binding.hpp"
+#include "lua/render.hpp"
 #include "lua/rigidlab.hpp"
 #include "lua/world.hpp"
 
@@ -96,6 +98,31 @@ int view_command(const std::vector<std::string>& arguments) {
     session.exit_status = 1;
   }
   return session.exit_status;
+}
+
+bool has_lesson_motion(lua_State* L) {
+  lua::push_motion_view(L);
+  const bool has = lua_isfunction(L, -1);
+  lua_pop(L, 1);
+  return has;
+}
+
+bool view_lesson_motion(lua_State* L, std::string& error) {
+  const int top = lua_gettop(L);
+  lua_pushcfunction(L, lua::traceback_handler);
+  lua::push_motion_view(L);
+  if (!lua_isfunction(L, -1)) {
+    lua_settop(L, top);
+    return true;
+  }
+  int status;
+  {
+    const InterruptibleCall interruptible(L);
+    status = lua_pcall(L, 0, 0, top + 1);
+  }
+  if (status != LUA_OK) error = lua_tostring(L, -1) != nullptr ? lua_tostring(L, -1) : "error";
+  lua_settop(L, top);
+  return status == LUA_OK;
 }
 
 }  // namespace rigidlab::cli

@@ -5,11 +5,19 @@
 // script only, not the time spent watching.
 #pragma once
 
+#include <lua.hpp>
+
 #include <string>
 #include <vector>
 
 namespace rigidlab::cli {
 
 int view_command(const std::vector<std::string>& arguments);
+
+// A lesson's key v: whether the step just shown drew a motion (ctx:motion), and its live view
+// (w:view from the strip's first state), run like a step (Ctrl-C and errors come back as
+// `error`, false).
+bool has_lesson_motion(lua_State* L);
+bool view_lesson_motion(lua_State* L, std::string& error);
 
 }  // namespace rigidlab::cli

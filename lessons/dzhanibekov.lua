@@ -423,7 +423,8 @@ in the default world at 60 Hz, drawn from t = 1.0 s to 1.9 s, around the first f
 step 2's schedule. The arrows: L (angular momentum), ω, and the box's own axes x, y, z.
 L never moves. Before the flip the box spins about its x axis, which points along L; during
 the flip ω leaves x and the box turns over; after it the box spins about x again, but x
-now points against L. In a terminal, rigidlab view shows it live (w:view).]],
+now points against L. In a terminal, v at the prompt shows it live: space pauses, ← steps
+back.]],
       formula = "x̂·L̂: +1 before the flip, −1 after it;   L constant",
       run = function(ctx)
         local w, b = spinning_box({}, vec3(spin_rate, 0, 0) + nudge)

@@ -205,7 +205,7 @@ its centre at x = -1.5 m)
 thrown sideways at 1 m/s, in a world at 60 Hz, drawn every 0.8 s with the path of its
 centre behind it. Each arc is lower than the one before, by e² = 0.5625 in height;
 friction makes the ball spin at every touch (the great circles drawn on it turn). In a
-terminal, rigidlab view shows it live (w:view).]],
+terminal, v at the prompt shows it live: space pauses, ← steps back.]],
       formula = "apex after a bounce = e²·(height before);   E never rises",
       run = function(ctx)
         local w = world{}

@@ -205,7 +205,7 @@ the default world at 60 Hz for 3 s, a frame every second, with its ω and L draw
 centre. The box tumbles and ω turns with it, but the L arrow stays where it is. Poinsot's
 picture of the same fact: ω·L = 2T, and both T and L are constant, so the tip of ω moves in
 a plane perpendicular to L (the invariable plane) while ω itself wanders. In a terminal,
-rigidlab view shows it live (w:view).]],
+v at the prompt shows it live: space pauses, ← steps back.]],
       formula = "L constant;   ω·L = ωᵀIω = 2T constant   (Poinsot)",
       run = function(ctx)
         local w, box = box_world("semi_implicit")

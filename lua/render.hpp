@@ -58,5 +58,9 @@ std::string render_world(lua_State* L, int world, const RenderRequest& request);
 // steps the world or articulation and shows a film strip of its frames in the lesson
 // (lua/render_motion.cpp); a method of the lesson's ctx (lua/lesson.cpp registers it).
 int context_motion(lua_State* L);
+// The live view of the last strip ctx:motion drew: pushes a function that shows it (w:view
+// from the state the strip began with), or nil; forget_motion drops it (a new step).
+void push_motion_view(lua_State* L);
+void forget_motion(lua_State* L);
 
 }  // namespace rigidlab::lua

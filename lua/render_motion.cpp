@@ -2,11 +2,14 @@
 // by w:render's pieces, fitted to the lesson's width, one camera for every frame (framing the
 // whole motion) so that what moves is seen to move. In check mode (nothing is written) it
 // only steps, so `rigidlab check` stays fast and the state after it is the same either way.
+// When it draws, it also leaves the live view of the same motion (from the strip's first
+// state) for the lesson runner, which offers it on the key v in a terminal.
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -154,7 +157,75 @@ std::string strip_text(lua_State* L, const std::vector<present::Scene>& scenes,
   return text + "\n";
 }
 
+// The live view of the last strip, for the lesson runner's key v: a function (the object,
+// the world's state when the strip began, w:view's options as upvalues) in the registry.
+const char motion_view_key = 0;
+const char saved_state_key = 0;
+
+struct SavedState {
+  WorldState state;
+};
+
+int saved_state_gc(lua_State* L) {
+  static_cast<SavedState*>(lua_touserdata(L, 1))->~SavedState();
+  return 0;
+}
+
+// Pushes a userdata holding `world`'s state now (freed by __gc).
+void push_saved_state(lua_State* L, const World& world) {
+  void* memory = lua_newuserdatauv(L, sizeof(SavedState), 0);
+  SavedState* saved = new (memory) SavedState{};
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &saved_state_key) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_createtable(L, 0, 1);
+    lua_pushcfunction(L, saved_state_gc);
+    lua_setfield(L, -2, "__gc");
+    lua_pushvalue(L, -1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &saved_state_key);
+  }
+  lua_setmetatable(L, -2);  // from here on __gc destroys it, whatever happens next
+  protect(L, [&] { world.save_state(saved->state); });
+}
+
+// The registered view: restores the state the strip began with (when the world still has the
+// same bodies) and calls object:view(options).
+int view_motion(lua_State* L) {
+  if (LuaWorld* w = test_world(L, lua_upvalueindex(1))) {
+    if (auto* saved = static_cast<SavedState*>(lua_touserdata(L, lua_upvalueindex(2)))) {
+      if (!w->world.stepping())
+        try_call([&] { w->world.restore_state(saved->state); });  // else: from where it is
+    }
+  }
+  lua_getfield(L, lua_upvalueindex(1), "view");
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_pushvalue(L, lua_upvalueindex(3));
+  lua_call(L, 2, 0);
+  return 0;
+}
+
+// Registers the view of the object at `object` (options: the table at `options` or none),
+// the saved state (or nil) at the top of the stack, which it pops.
+void remember_motion(lua_State* L, int object, int options) {
+  lua_pushvalue(L, object);
+  lua_insert(L, -2);
+  lua_createtable(L, 0, 3);  // w:view's options: those ctx:motion shares with it
+  if (lua_istable(L, options))
+    for (const char* field : {"show", "camera", "dt"}) {
+      lua_getfield(L, options, field);
+      lua_setfield(L, -2, field);
+    }
+  lua_pushcclosure(L, view_motion, 3);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &motion_view_key);
+}
+
 }  // namespace
+
+void push_motion_view(lua_State* L) { lua_rawgetp(L, LUA_REGISTRYINDEX, &motion_view_key); }
+
+void forget_motion(lua_State* L) {
+  lua_pushnil(L);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &motion_view_key);
+}
 
 int context_motion(lua_State* L) {
   if (test_lesson_context(L, 1) == nullptr) type_error(L, 1, "live lesson context");
@@ -170,6 +241,12 @@ int context_motion(lua_State* L) {
   LessonContext* context = test_lesson_context(L, 1);
   if (context->ended) arg_error(L, 1, "the lesson has ended: its ctx can no longer show anything");
   const bool drawing = context->output != nullptr;
+  if (drawing) {  // the start, for the runner's live view (key v)
+    if (LuaWorld* w = test_world(L, 2))
+      push_saved_state(L, w->world);
+    else
+      lua_pushnil(L);
+  }
   const lua_Integer per_frame =
       r.frames > 1 ? std::max<lua_Integer>(1, std::llround(r.seconds / (r.frames - 1) / r.dt)) : 0;
   SceneRequest request = r.render.scene;
@@ -192,6 +269,7 @@ int context_motion(lua_State* L) {
   }
   context = test_lesson_context(L, 1);  // the steps ran Lua code: look again
   if (!drawing || context == nullptr || context->ended || context->output == nullptr) return 0;
+  remember_motion(L, 2, 3);
   const std::string text = strip_text(L, scenes, times, r, context->width);
   context->output->write(text);
   return 0;

@@ -184,4 +184,23 @@ wait_for "<- on an articulation says it cannot step back yet" 'cannot step back:
 key q
 wait_exit "q ends the articulation's view" 0
 tmux -S "$socket" kill-server 2>/dev/null || true
+socket=$scratch/tmux-6.socket
+
+# A lesson step that draws a strip (ctx:motion) offers its live view on the key v: the view
+# starts from the strip's first state (t = 0, the strip ended at 1.5 s), q returns to the
+# lesson's prompt.
+mkdir -p "$scratch/lessons"
+cp "$(dirname "$0")/spin_lesson.lua" "$scratch/lessons/spin.lua"
+start LANG=C.UTF-8 -- lesson lessons/spin.lua
+wait_for "the lesson offers the live view" 'v watch'
+key v
+wait_for "v starts the view at the strip's first state" '^t 0\.[0-9]+ s  E .* running'
+key q
+sleep 0.5
+case_name="q returns to the lesson's prompt, the terminal restored"
+[[ $(tmux -S "$socket" display -p '#{alternate_on}') == 0 ]] && screen | grep -q 'v watch   m menu' &&
+  pass || fail "$(screen | tail -3)"
+key q
+wait_exit "q ends the lesson" 0
+tmux -S "$socket" kill-server 2>/dev/null || true
 finish
