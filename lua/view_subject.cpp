@@ -77,7 +77,14 @@ class WorldSubject final : public ViewSubject {
     if (next != nullptr)
       note_ = "this replay differs from the history (a force callback with a state of its own?): "
               "the rest of it is dropped";
-    protect(L, [&] { w.save_state(history_->record()); });
+    protect(L, [&] {
+      WorldState& saved = history_->record();
+      w.save_state(saved);
+      // A state that has grown (contacts made since) gets fewer slots: the ring stays within
+      // history_bytes, give or take a third.
+      const std::size_t fit = std::max<std::size_t>(2, history_bytes / state_bytes(w, saved));
+      if (4 * fit < 3 * history_->capacity()) history_->shrink(fit);
+    });
   }
 
   bool back(lua_State* L, std::string& note) override {

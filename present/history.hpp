@@ -9,6 +9,7 @@
 // Generic over the state (the world's engine::WorldState, an articulation's), no engine here.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <vector>
@@ -45,6 +46,24 @@ class History {
     ++size_;
     cursor_ = size_ - 1;
     return slot(cursor_);
+  }
+
+  // Keeps at most `capacity` (>= 1) slots, freeing the others: the newest states stay, and the
+  // cursor on its state (or on the oldest kept, if its own is dropped). For a state that has
+  // grown (more contacts): the ring's memory stays bounded. Moves the states kept.
+  void shrink(std::size_t capacity) {
+    if (capacity == 0) throw std::invalid_argument("a history needs at least one slot");
+    if (capacity >= slots_.size()) return;
+    const std::size_t kept = std::min(size_, capacity), dropped = size_ - kept;
+    std::vector<State> slots;
+    slots.reserve(capacity);
+    for (std::size_t k = dropped; k < size_; ++k) slots.push_back(std::move(slot(k)));
+    // The spare slots (any content: a state is copied into them before it is read).
+    while (slots.size() < capacity) slots.push_back(std::move(slots_[slots.size() % slots_.size()]));
+    slots_ = std::move(slots);
+    first_ = 0;
+    size_ = kept;
+    cursor_ = cursor_ >= dropped ? cursor_ - dropped : 0;
   }
 
   // Forgets every state (the slots stay allocated).

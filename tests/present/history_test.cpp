@@ -27,7 +27,7 @@ struct Model {
 };
 
 TEST(History, MatchesAListWithACursorOverALongRun) {
-  for (const std::size_t capacity : {1u, 2u, 7u}) {
+  for (const std::size_t capacity : {1u, 2u, 7u, 40u}) {
     History<int> h(capacity, -1);
     Model m{capacity};
     unsigned seed = 12345;
@@ -53,7 +53,13 @@ TEST(History, MatchesAListWithACursorOverALongRun) {
         h.clear();
         m.states.clear();
         m.cursor = 0;
+      } else if (seed % 89 == 0 && m.capacity > 1) {  // fewer slots: the oldest states go
+        h.shrink(--m.capacity);
+        const std::size_t dropped = m.states.size() > m.capacity ? m.states.size() - m.capacity : 0;
+        m.states.erase(m.states.begin(), m.states.begin() + static_cast<long>(dropped));
+        m.cursor = m.cursor >= dropped ? m.cursor - dropped : 0;
       }
+      ASSERT_EQ(h.capacity(), m.capacity);
       ASSERT_EQ(h.size(), m.states.size()) << "op " << op;
       ASSERT_EQ(h.position(), m.cursor) << "op " << op;
       EXPECT_EQ(h.at_newest(), m.states.empty() || m.cursor + 1 == m.states.size());
@@ -93,8 +99,28 @@ TEST(History, SlotsAreAllocatedOnceAndReused) {
   EXPECT_EQ(h.at(0)[0], 16.0);
 }
 
+TEST(History, ShrinkingKeepsTheNewestAndTheCursorOnItsState) {
+  History<int> h(6, 0);
+  for (int s = 1; s <= 6; ++s) h.record() = s;  // 1..6, full
+  h.record() = 7;                               // 2..7, the ring wrapped
+  h.back();
+  h.back();                                     // on 5
+  h.shrink(4);                                  // 4..7
+  EXPECT_EQ(h.capacity(), 4u);
+  EXPECT_EQ(h.size(), 4u);
+  EXPECT_EQ(h.at(0), 4);
+  EXPECT_EQ(h.current(), 5);
+  h.shrink(1);                                  // 7; the cursor's state is gone: the oldest kept
+  EXPECT_EQ(h.current(), 7);
+  h.record() = 8;
+  EXPECT_EQ(h.size(), 1u);
+  EXPECT_EQ(h.at(0), 8);
+}
+
 TEST(History, RefusesZeroSlots) {
   EXPECT_THROW(History<int>(0, 0), std::invalid_argument);
+  History<int> h(2, 0);
+  EXPECT_THROW(h.shrink(0), std::invalid_argument);
 }
 
 }  // namespace
