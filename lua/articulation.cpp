@@ -474,7 +474,7 @@ void open_articulation(lua_State* L, int lib) {
   add_properties(L, articulation_type, properties);
   add_methods(L, articulation_type, methods);
   open_articulation_dynamics(L);
-  open_articulation_link(L);
+  open_articulation_link(L, lib);
   lua_newtable(L);
   register_entries(L, -1, call_entry);
   lua_pushliteral(L, "articulation");

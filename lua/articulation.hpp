@@ -65,6 +65,6 @@ class ControlThread {
 };
 
 void open_articulation_dynamics(lua_State* L);
-void open_articulation_link(lua_State* L);
+void open_articulation_link(lua_State* L, int lib);
 
 }  // namespace rigidlab::lua

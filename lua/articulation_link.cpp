@@ -264,7 +264,10 @@ void append_link_object(lua_State* L, int object, int link) {
   lua_pop(L, 1);
 }
 
-void open_articulation_link(lua_State* L) {
+// The `link` type's table is in the library (as `recorder` is), so that help() lists it,
+// help("link:position") and help(link) find it, and the fuzz harness, which reads the names
+// to call from the library, calls its methods.
+void open_articulation_link(lua_State* L, int lib) {
   lua_newtable(L);  // the `link` topic's table (links are made by art:add_link)
   const int table = lua_gettop(L);
   new_type(L, link_type, table, metamethods);
@@ -273,7 +276,7 @@ void open_articulation_link(lua_State* L) {
   register_topic(L, table, "link",
                  "A link of an articulation (art:add_link, art.links, art:link). Read-only\n"
                  "fields describe it as added; methods give its pose and velocity now.");
-  lua_pop(L, 1);
+  lua_setfield(L, lib, "link");
 }
 
 }  // namespace rigidlab::lua

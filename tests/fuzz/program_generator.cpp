@@ -46,6 +46,17 @@ const char* const values[] = {
     "setmetatable({k = 10, anchor = vec3()}, {__index = function(_, k) shrink() return proxy_field(k) end})",
     "setmetatable({}, {__index = function() error('mt') end, __len = function() return 2^31 end, __pairs = function() error('p') end})",
     "W", "W:bodies()[1]", "W:bodies()[2]", "K",
+    // Articulations (A in the prelude): link specifications, a free base, its links, controls
+    // that return wrong torques, raise, or try to change the articulation that calls them.
+    "A", "A.links[1]", "A.links[#A.links]", "{base = 'free', integrator = 'rk4'}",
+    "{joint = 'revolute', axis = vec3(0, 0, 1), mass = 1, com = vec3(0, -1, 0)}",
+    "{joint = 'prismatic', axis = vec3(), mass = 1}", "{joint = 'fixed', parent = r[1]}",
+    "{parent = A.links[1], joint = 'hinge', inertia = mat3.diag(1, 2, 3), name = 'x'}",
+    "function(a, t) return a.qd end", "function(a, t) return {1e308, 0/0} end",
+    "function(a) a:step(0.01) return {0} end",
+    "function(a) a:set_state(a.q, a.qd) end",
+    "function() shrink() grow() return {} end",
+    "{1, 2}", "{0, 0, 0, 0, 0, 0, 0, 0}",
 };
 
 // Steps tables for lesson{...}; %s is where the body of a run function goes.
@@ -77,12 +88,13 @@ const char* const tolerances[] = {
     "tolerance = {abs = 0/0, reason = ''}, ",
 };
 
-// Fields written as r[i].f = a: those of vec3, quat, body and world (fields are not Entries,
-// so they are listed here; API.md and the types' help list them).
+// Fields written as r[i].f = a: those of vec3, quat, body, world and articulation (fields are
+// not Entries, so they are listed here; API.md and the types' help list them).
 const char* const fields[] = {"x", "y", "z", "w", "position", "velocity", "angular_velocity",
                               "orientation", "mass", "inv_mass", "inertia", "restitution",
                               "friction", "static", "shape", "time", "gravity", "integrator",
-                              "gyroscopic", "substeps", "iterations", "restitution_threshold"};
+                              "gyroscopic", "substeps", "iterations", "restitution_threshold",
+                              "q", "qd", "links", "base"};
 
 template <class T, std::size_t N>
 const char* pick(const T (&table)[N], unsigned byte) {
@@ -120,17 +132,23 @@ const char* pick(const std::vector<std::string>& names, unsigned index) {
   return names.empty() ? "print" : names[index % names.size()].c_str();
 }
 
-// Every program starts with: r, the results kept; W, a world with two bodies; grow and shrink,
-// which add bodies to and remove bodies from W and the worlds in r (for the option tables'
-// metamethods above); proxy_field, the fields a proxy option table hands out; lessons, the
+// Every program starts with: r, the results kept; W, a world with two bodies; A, an
+// articulation of two links; grow and shrink, which add bodies to and remove bodies from W and
+// the worlds in r, and grow adds links to A (its q, q̇ and torques grow while a binding reads an
+// option table: the option tables' metamethods above); proxy_field, the fields a proxy option table hands out; lessons, the
 // lessons made, which the program returns.
 const char* const prelude = R"(local r, lessons = {}, {}
 local function keep(ok, v) if ok then r[#r % 8 + 1] = v end end
 local W = world{}
 W:add(body.sphere{mass = 1, radius = 0.5})
 W:add(body.box{mass = 2, size = vec3(1, 1, 1), position = vec3(2, 0, 0)})
+local A = articulation{gravity = vec3(0, -9.81, 0)}
+A:add_link{joint = 'revolute', axis = vec3(0, 0, 1), mass = 1, com = vec3(0, -1, 0)}
+A:add_link{parent = A.links[1], joint = 'prismatic', axis = vec3(0, -1, 0), mass = 1,
+           origin = vec3(0, -1, 0)}
 local function grow()
   pcall(function() W:add(body.sphere{mass = 1, radius = 0.5, position = vec3(0, 3, 0)}) end)
+  pcall(function() if #A.links < 32 then A:add_link{parent = A.links[#A.links], mass = 1} end end)
   for i = 1, 8 do pcall(function() r[i]:add(body.sphere{mass = 1, radius = 0.25}) end) end
 end
 local function shrink()
