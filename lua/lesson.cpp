@@ -267,7 +267,7 @@ int context_expect_range(lua_State* L) {
   } else {
     const double got = lua_tonumber(L, 3);
     if (std::isnan(got))
-      problem = "got nan";
+      problem = "got nan: nan is in no range";
     else if (has_low && got < low)
       problem = "below the low bound by " + format_number(low - got, 4);
     else if (has_high && got > high)

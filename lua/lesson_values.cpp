@@ -260,7 +260,7 @@ class Comparison {
   }
 
   std::string off_by(double got, double want) const {
-    if (std::isnan(got)) return "got nan";
+    if (std::isnan(got)) return "got nan: nan equals nothing";
     if (std::isnan(want)) return "want nan: nan equals nothing";
     return "off by " + format_number(std::fabs(got - want), 4);  // 4 digits tell how far
   }

@@ -113,7 +113,7 @@ TEST_F(LessonContextTest, NumbersInfinitiesAndNan) {
   verdict(R"(ctx:expect("x", -math.huge, -math.huge))", true);
   verdict(R"(ctx:expect("x", math.huge, -math.huge))", false, "off by inf");
   verdict(R"(ctx:expect("x", 1e308, math.huge))", false, "off by inf");
-  verdict(R"(ctx:expect("x", 0/0, 0/0))", false, "got nan");
+  verdict(R"(ctx:expect("x", 0/0, 0/0))", false, "got nan: nan equals nothing");
   verdict(R"(ctx:expect("x", 1, 0/0))", false, "want nan");
   verdict(R"(ctx:expect("x", 2, 2.0))", true);
   verdict(R"(ctx:expect("x", -0.0, 0))", true);
@@ -209,7 +209,7 @@ TEST_F(LessonContextTest, ExpectRange) {
   verdict(R"(ctx:expect_range("h", 4, 3, nil))", true, "want ≥ 3");
   verdict(R"(ctx:expect_range("h", 4, nil, 3))", false, "want ≤ 3");
   verdict(R"(ctx:expect_range("h", math.huge, 0, nil))", true);
-  verdict(R"(ctx:expect_range("h", 0/0, 0, 1))", false, "got nan");
+  verdict(R"(ctx:expect_range("h", 0/0, 0, 1))", false, "got nan: nan is in no range");
   verdict(R"(ctx:expect_range("h", "2", 0, 3))", false, "got a string, want a number");
   verdict(R"(ctx:expect_range("h", nil, 0, 3))", false, "got nil, want a number");
   EXPECT_EQ(run(R"(ctx:expect_range("h", 1))"),
