@@ -234,7 +234,11 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
     double t1 = p.tangent1.impulse - p.tangent1.mass * row_velocity(p.tangent1, a, b);
     double t2 = p.tangent2.impulse - p.tangent2.mass * row_velocity(p.tangent2, a, b);
     const double limit = m.friction * p.normal.impulse;
-    const double length = std::hypot(t1, t2);
+    // Squares first: std::hypot's care against overflow cost a fifth of a pyramid's step, so
+    // it is kept for the impulses whose squares overflow.
+    const double length_squared = t1 * t1 + t2 * t2;
+    const double length =
+        std::isfinite(length_squared) ? std::sqrt(length_squared) : std::hypot(t1, t2);
     if (length > limit) {  // slipping: on the edge of the cone, against the slip
       const double scale = length > 0.0 ? limit / length : 0.0;
       t1 *= scale, t2 *= scale;

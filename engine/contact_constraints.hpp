@@ -294,6 +294,7 @@ class ContactConstraints {
   // Restitution: per body, whether a resting contact supports it; its velocity then.
   std::vector<unsigned char> supported_;
   std::vector<std::uint32_t> round_manifolds_;  // the manifolds a restitution round sweeps
+  bool bounces_ = false;  // the present round has a bounce (a target > 0)
   std::vector<Vec3> start_velocity_, start_angular_velocity_;  // u before warm starting
   // The last step's points, sorted (warm starting), and the one being built.
   std::vector<ContactInfo> contacts_;
