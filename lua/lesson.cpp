@@ -556,7 +556,8 @@ const Entry context_methods[] = {
      "1/60 s) and shows frames (default 4) evenly spaced over that time, w's state now the\n"
      "first, as a film strip fitted to the lesson's width: one camera frames the whole motion;\n"
      "show and camera as for w:render. No colour; ASCII when the terminal is not UTF-8 or\n"
-     "ascii = true. In check mode it only steps (the state after it is the same)."},
+     "ascii = true. In check mode it only steps (the state after it is the same). In a\n"
+     "terminal the lesson's prompt then offers v: the same motion live (w:view)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry context_metamethods[] = {
