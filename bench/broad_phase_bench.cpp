@@ -1,8 +1,8 @@
 // Broad phase speed (issue 13, item 5 and its target), the engine's BroadPhase (dynamic AABB
 // trees, fat boxes, persistent pairs) side by side with two hand-written baselines run on the
 // same boxes in the same process:
-//   sap   the sweep and prune the contact solver runs today (engine/contact_finder.cpp,
-//         build_proxies and find_contacts): every step the proxies are rebuilt, sorted along x
+//   sap   the sweep and prune the contact finder ran before the world used this broad phase
+//         (issue 13 item 5): every step the proxies are rebuilt, sorted along x
 //         and swept, here with the y and z intervals tested instead of bounding spheres;
 //   grid  a uniform grid rebuilt every step: each box into the hashed cells it covers (counting
 //         sort by cell), each pair tested once in the cell of the corner of its overlap.

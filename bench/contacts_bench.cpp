@@ -1,0 +1,138 @@
+// Contacts in the world (issue 13's targets), each scene stepped by the engine's World as a
+// user's script steps it, 60 Hz, default settings unless named:
+//   free/N        N boxes without shapes (integration alone): the baseline of scattered/N;
+//   scattered/N   the same N boxes with their shapes, far apart (5 m lattice, drifting at up to
+//                 0.3 m/s and spinning at up to 3 rad/s, no gravity): the broad phase's share is
+//                 scattered − free, per body-step at 1k, 10k, 100k (goal: flat within 1.5× of
+//                 the 1k figure, the whole step ≤ 1.3 µs per body at 100k);
+//   settle/N      N spheres (r = 0.1 m) dropped as a jittered lattice, 4 layers, into a bin of
+//                 five planes whose floor grows with N (256, 1,024, 4,096), timed from 0.5 s on
+//                 while they settle: ms per step and contacts per body (goal: per body-step
+//                 flat after accounting for the contacts per body);
+//   pyramid/S     210 unit boxes (base 20), solver S, timed after 10 s standing; the top box's
+//                 displacement after those 10 s is reported too (goal: ≤ 1.0 ms per step,
+//                 < 5 mm);
+//   column/S      10 unit boxes on each other, likewise (and a column of 20's top after 10 s);
+//   stack/S       5 unit boxes: how far the top sank after 10 s.
+// bench/run prints the table of issue 13 from these:  build/bench/contacts_bench
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "engine/world.hpp"
+#include "tests/engine/world_stacks.hpp"
+
+namespace {
+
+using namespace rigidlab;
+
+constexpr double dt = 1.0 / 60.0;
+
+// Every benchmark sets the same counters (the CSV bench/run reads needs them in every row).
+void set_counters(benchmark::State& state, double moved_mm, double contacts_per_body) {
+  state.counters["moved_mm"] = moved_mm;
+  state.counters["contacts_per_body"] = contacts_per_body;
+}
+
+// ---- scattered boxes, with and without shapes -----------------------------------------------
+
+std::unique_ptr<World> scattered_world(int n, bool shaped) {
+  auto w = std::make_unique<World>();
+  w->set_gravity(Vec3::Zero());
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int side = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(n))));
+  for (int i = 0; i < n; ++i) {
+    Body b = make_box_body(1.0, Vec3(1.0 + 0.5 * u(rng), 1.0 + 0.5 * u(rng), 1.0 + 0.5 * u(rng)));
+    b.position = 5.0 * Vec3(i % side, (i / side) % side, i / (side * side)) +
+                 0.5 * Vec3(u(rng), u(rng), u(rng));
+    b.orientation = quat_from_axis_angle(Vec3(u(rng), u(rng), 1.0), 3 * u(rng));
+    b.velocity = 0.3 * Vec3(u(rng), u(rng), u(rng));
+    b.angular_velocity = 3.0 * Vec3(u(rng), u(rng), u(rng));
+    if (!shaped) b.shape = Shape{};
+    w->add(b);
+  }
+  return w;
+}
+
+void run_scattered(benchmark::State& state, bool shaped) {
+  const int n = static_cast<int>(state.range(0));
+  std::unique_ptr<World> w = scattered_world(n, shaped);
+  w->step(dt, 3);  // the buffers grow
+  for (auto _ : state) {
+    w->step(dt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  set_counters(state, 0.0, static_cast<double>(w->contacts().size()) / n);
+}
+void free_boxes(benchmark::State& state) { run_scattered(state, false); }
+void scattered(benchmark::State& state) { run_scattered(state, true); }
+
+// ---- spheres settling in a bin ------------------------------------------------------------------
+
+void settle(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int side = static_cast<int>(std::lround(std::sqrt(n / 4.0)));  // 4 layers
+  World w;
+  const double width = 0.25 * side;
+  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, 0.0, 0.5));
+  w.add_plane(make_plane(Vec3(1, 0, 0), 0.0, 0.0, 0.5));
+  w.add_plane(make_plane(Vec3(-1, 0, 0), -width, 0.0, 0.5));
+  w.add_plane(make_plane(Vec3(0, 0, 1), 0.0, 0.0, 0.5));
+  w.add_plane(make_plane(Vec3(0, 0, -1), -width, 0.0, 0.5));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    Body b = make_sphere_body(0.1, 0.1);
+    b.position = Vec3(0.125 + 0.25 * (i % side), 0.2 + 0.25 * (i / (side * side)),
+                      0.125 + 0.25 * ((i / side) % side)) +
+                 0.02 * Vec3(u(rng), u(rng), u(rng));
+    b.friction = 0.5;
+    w.add(b);
+  }
+  w.step(dt, 30);  // half a second: they have landed on each other and are settling
+  for (auto _ : state) {
+    w.step(dt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  set_counters(state, 0.0, static_cast<double>(w.contacts().size()) / n);
+}
+
+// ---- stacks: pyramid, column, stack ---------------------------------------------------------------
+
+// Stands the stack 10 s, reports how far its top moved (mm), then times its steps.
+void run_stack(benchmark::State& state, int base, bool pyramid) {
+  World w;
+  w.set_solver(static_cast<SolverKind>(state.range(0)));
+  const BodyId top = build_stack(w, base, pyramid);
+  const Vec3 start = w.store().get(top).position;
+  w.step(dt, 600);
+  const double moved_mm = 1e3 * (w.store().get(top).position - start).norm();
+  for (auto _ : state) {
+    w.step(dt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(w.bodies().size()));
+  set_counters(state, moved_mm, static_cast<double>(w.contacts().size()) / w.bodies().size());
+}
+void pyramid(benchmark::State& state) { run_stack(state, 20, true); }
+void column(benchmark::State& state) { run_stack(state, 10, false); }
+void column20(benchmark::State& state) { run_stack(state, 20, false); }
+void stack(benchmark::State& state) { run_stack(state, 5, false); }
+
+}  // namespace
+
+BENCHMARK(free_boxes)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(scattered)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(settle)->Arg(256)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond);
+BENCHMARK(pyramid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(column)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(column20)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(stack)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
