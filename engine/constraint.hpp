@@ -11,10 +11,12 @@
 //   limit      C ≥ 0: a one-sided row (λ ≥ 0). While C > 0 it only keeps the bodies from
 //              crossing C = 0 within the substep (speculative, v ≥ −C/h, as a contact gap);
 //              once violated it pushes back like a contact.
-//   motor      J v = target_velocity with |λ| ≤ max_impulse: a velocity drive (rigid, no
-//              position feedback).
-//   spring     a soft row pulling C to 0 with its own hertz and damping ratio (make_soft), its
-//              impulse bounded by max_impulse: a joint spring, or a PD drive written as one.
+//   spring     a damped oscillator of C toward 0 with its own hertz and damping ratio per
+//              unit effective mass (a joint spring, Box2D's soft joint spring).
+//   motor      document 000 "PD controller" on C = θ − θd: τ = −kp C + kv (θ̇d − Ċ), the
+//              force (or torque) bounded by max_force.
+// Spring and motor rows are integrated exactly over the substep (engine/solver.cpp, "spring
+// and motor rows"); their impulse is bounded by max_force·h.
 // The world frame throughout; C in m for linear rows, rad for angular rows.
 #pragma once
 
@@ -32,10 +34,14 @@ struct JointRow {
   Kind kind = Kind::equality;
   Jacobian jacobian;               // at the present poses (engine/constraint_row.hpp)
   double error = 0.0;              // C (m or rad)
-  double target_velocity = 0.0;    // motor: the J v it drives toward (m/s or rad/s)
-  double max_impulse = unbounded;  // motor, spring: bound of |λ| over a substep (N s, N m s)
-  double hertz = 0.0;              // spring
+  double target_velocity = 0.0;    // motor: θ̇d (m/s or rad/s)
+  double max_force = unbounded;    // motor: bound of |force| (N or N m)
+  double hertz = 0.0;              // spring (> 0)
   double damping_ratio = 0.0;      // spring
+  double kp = 0.0, kv = 0.0;       // motor: N/m or N m/rad, N s/m or N m s/rad
+  // Equality rows that hold one point or one orientation together are solved as a block:
+  // the first row of such a block says how many rows it has (2 or 3); the others say 0.
+  std::uint8_t block = 1;
 };
 
 // The base of every joint. Owned by the world (World::add_constraint); body b may be
@@ -54,14 +60,39 @@ class Constraint {
   virtual int row_count() const = 0;
   // Writes row_count() rows for the bodies' present poses; b is nullptr for the world.
   virtual void build_rows(const Body& a, const Body* b, JointRow* rows) const = 0;
-  // The accumulated impulse of each row over the last step (N s or N m s, in the order the
+  // Follows the bodies' motion (a hinge counts its turns): called at every substep before
+  // build_rows, and by nothing else.
+  virtual void track(const Body&, const Body*) {}
+  // The energy stored in the joint's springs (J) at the bodies' present poses.
+  virtual double potential_energy(const Body&, const Body*) const { return 0.0; }
+  // The accumulated impulse of each row over the last substep (N s or N m s, in the order the
   // rows are built; empty before the first step). The next step is warm started from them.
   const std::vector<double>& impulses() const { return impulses_; }
+  // What the joint's rows gave body b over the last step (a got the opposite): the linear
+  // impulse (N s) and the angular impulse of the angular rows (N m s); and the force of the
+  // motor row in the last substep (N or N m; 0 without a motor).
+  const Vec3& step_impulse() const { return step_impulse_; }
+  const Vec3& step_angular_impulse() const { return step_angular_impulse_; }
+  double motor_force() const { return motor_force_; }
+  // The world's serial number of the joint (World::add_constraint), for handles.
+  std::uint64_t serial() const { return serial_; }
+
+ protected:
+  // The rows changed (limits or a motor added): no warm start from the old ones.
+  void forget_impulses() { impulses_.clear(); }
+  // State that follows the motion (a hinge's angle, counted in turns): saved with the
+  // impulses by the world's undo and saved states.
+  double tracked_ = 0.0;
 
  private:
   friend class Solver;
+  friend class World;
   BodyId a_, b_;
   std::vector<double> impulses_;
+  Vec3 step_impulse_ = Vec3::Zero();
+  Vec3 step_angular_impulse_ = Vec3::Zero();
+  double motor_force_ = 0.0;
+  std::uint64_t serial_ = 0;
 };
 
 }  // namespace rigidlab

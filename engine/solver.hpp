@@ -100,11 +100,13 @@ class Solver {
     last_h_ = last_substep;
   }
   // The joints' row impulses, flattened in order (Constraint::impulses), and back.
+  // Per joint: the row count, the state it tracks (a hinge's turns), the impulses.
   template <class Joints>
   static void save_impulses(const Joints& joints, std::vector<double>& to) {
     to.clear();
     for (const auto& joint : joints) {
       to.push_back(static_cast<double>(joint->impulses_.size()));
+      to.push_back(joint->tracked_);
       to.insert(to.end(), joint->impulses_.begin(), joint->impulses_.end());
     }
   }
@@ -113,6 +115,7 @@ class Solver {
     std::size_t next = 0;
     for (auto& joint : joints) {
       const std::size_t count = static_cast<std::size_t>(from[next++]);
+      joint->tracked_ = from[next++];
       joint->impulses_.assign(from.begin() + next, from.begin() + next + count);
       next += count;
     }
@@ -122,16 +125,30 @@ class Solver {
  private:
   struct Row {
     ConstraintRow row;
-    double push_impulse;  // soft_step's position feedback (on the push velocities)
-    Softness soft;       // per kind, for this substep
-    double error;        // C
-    double bias;         // soft position feedback or motor target, as solve_row takes it
-    std::uint32_t a, b;  // solver slots
+    double push_impulse;  // on the push velocities
+    Softness soft;        // soft_step's position feedback of equality rows and limits
+    double error;         // C
+    double bias;          // equality rows: R/h (curvature); springs and motors: −(the oscillator's
+                          // end velocity)
+    double push_target;   // springs and motors: the push velocity J v_push they reach
+    bool pushes;          // springs and motors: whether the push applies
+    std::uint32_t a, b;   // solver slots
     JointRow::Kind kind;
   };
+  struct Group {  // rows solved together: one row, or a block of 2 or 3 equality rows
+    std::uint32_t first;
+    std::uint8_t size;
+    std::uint32_t block;  // index in block_inverse_ when size > 1
+  };
   double sweep_joints(bool forward);
-  void push_joints(bool forward);
-  double joint_bias(const Row& r, Softness& soft) const;
+  double solve_block(const Group& g, SolverBody* set, const double* bias, const Softness& soft,
+                     bool push);
+  void group_rows(std::size_t first);
+  void push_joints(bool forward, bool feedback);
+  double joint_bias(const Row& r) const;
+  void prepare_oscillator(Row& r, const JointRow& spec) const;
+  void build_rows_ahead(Constraint& joint, const Body& a, const Body* b, const SolverBody& sa,
+                        const SolverBody& sb);
   void correct_joint_positions(std::vector<Body>& bodies, const std::vector<JointRef>& joints);
 
   std::vector<SolverBody> bodies_;
@@ -140,6 +157,9 @@ class Solver {
   ContactConstraints contacts_;
   std::vector<Row> rows_;
   std::vector<JointRow> scratch_;
+  std::vector<JointRow> ahead_;
+  std::vector<Group> groups_;
+  std::vector<Mat3> block_inverse_;  // K⁻¹ of each block (2 x 2 blocks padded with zeros)  // the rows at the poses the free velocities reach
   const std::vector<JointRef>* joints_ = nullptr;
   std::vector<double> report_;
   double h_ = 0.0;

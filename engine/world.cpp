@@ -155,6 +155,7 @@ Constraint& World::add_constraint(std::unique_ptr<Constraint> joint) {
   if (joint->body_a() == joint->body_b())
     throw std::invalid_argument("a joint needs two different bodies");
   if (joint->row_count() < 0) throw std::invalid_argument("a joint has no negative row count");
+  joint->serial_ = ++last_joint_serial_;
   joints_.push_back(std::move(joint));
   return *joints_.back();
 }
@@ -165,6 +166,14 @@ void World::remove_constraint(const Constraint& joint) {
                                [&](const std::unique_ptr<Constraint>& j) { return j.get() == &joint; });
   if (it == joints_.end()) throw std::invalid_argument("the joint is not in this world");
   joints_.erase(it);
+}
+
+// Joints stay in the order added, so by serial number.
+Constraint* World::find_constraint(std::uint64_t serial) {
+  const auto it = std::lower_bound(
+      joints_.begin(), joints_.end(), serial,
+      [](const std::unique_ptr<Constraint>& j, std::uint64_t s) { return j->serial() < s; });
+  return it != joints_.end() && (*it)->serial() == serial ? it->get() : nullptr;
 }
 
 bool World::has_force_elements() const {
@@ -293,6 +302,7 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
   for (long k = 0; k < count; ++k) {
     StepGuard guard(*this, !snapshot_in_pass);
     const double t = time_;
+    for (const auto& j : joints_) j->step_impulse_ = j->step_angular_impulse_ = Vec3::Zero();
     for (int s = 0; s < substeps_; ++s) {
       // The integrators consume the accumulators; forces applied before the call act during
       // every substep of the first step.
@@ -362,11 +372,11 @@ void World::restore_state(const WorldState& from) {
   require_not_stepping(*this, "restore a state");
   if (from.ids != store_->ids())
     throw std::invalid_argument("the state was saved with other bodies than the world has now");
-  // The flattened impulses hold each joint's row count, then its impulses.
+  // The flattened impulses hold each joint's row count, its tracked state, then its impulses.
   std::size_t next = 0;
   for (std::size_t k = 0; k < joints_.size() && next <= from.joint_impulses.size(); ++k)
     next = next < from.joint_impulses.size()
-               ? next + 1 + static_cast<std::size_t>(from.joint_impulses[next])
+               ? next + 2 + static_cast<std::size_t>(from.joint_impulses[next])
                : from.joint_impulses.size() + 1;
   if (next != from.joint_impulses.size())
     throw std::invalid_argument("the state was saved with other joints than the world has now");
@@ -390,6 +400,9 @@ double World::potential_energy() const {
   const BodyStore& store = *store_;
   for (const Spring& s : springs_)
     sum += spring_potential_energy(store.get(s.a), s.b.valid() ? &store.get(s.b) : nullptr, s);
+  for (const auto& j : joints_)
+    sum += j->potential_energy(store.get(j->body_a()),
+                               j->body_b().valid() ? &store.get(j->body_b()) : nullptr);
   return sum;
 }
 

@@ -110,6 +110,11 @@ class World {
   void remove_constraint(const Constraint& joint);
   std::size_t constraint_count() const { return joints_.size(); }
   Constraint& constraint(std::size_t i) { return *joints_[i]; }
+  const Constraint& constraint(std::size_t i) const { return *joints_[i]; }
+  // The joint of serial number `serial` (Constraint::serial), or nullptr once removed.
+  Constraint* find_constraint(std::uint64_t serial);
+  // The serial number the next joint added will get.
+  std::uint64_t next_joint_serial() const { return last_joint_serial_ + 1; }
 
   // ---- contacts (engine/contact_constraints.hpp) ----
   // Bodies with a shape collide with each other and with the planes. A body's shape must not
@@ -153,7 +158,8 @@ class World {
 
   // ---- totals (dynamic bodies; static ones have no momentum and no energy) ----
   double kinetic_energy() const;                   // J
-  double potential_energy() const;                 // J: gravity (zero at the origin) + springs
+  double potential_energy() const;                 // J: gravity (zero at the origin),
+                                                   // springs and joint springs
   double energy() const { return kinetic_energy() + potential_energy(); }
   Vec3 linear_momentum() const;                    // kg m/s
   // kg m²/s about the world point `about`: Σ (x − about) × m v + I_world ω.
@@ -187,7 +193,8 @@ class World {
   std::vector<Drag> drags_;
   std::vector<ForceCallback> callbacks_;
   std::vector<Plane> planes_;
-  std::vector<std::unique_ptr<Constraint>> joints_;
+  std::vector<std::unique_ptr<Constraint>> joints_;  // in the order added (serials rise)
+  std::uint64_t last_joint_serial_ = 0;
   std::vector<std::shared_ptr<StepObserver>> observers_;
   std::size_t shaped_bodies_ = 0;  // bodies whose shape is not none
   Solver solver_;

@@ -25,5 +25,6 @@ void open_render(lua_State* L, int lib);  // after open_world: world methods
 void open_record(lua_State* L, int lib);  // after open_world: world methods
 void open_export_html(lua_State* L, int lib);  // after open_world: world methods
 void open_view(lua_State* L, int lib);  // after open_world: world methods
+void open_joint(lua_State* L, int lib);  // after open_world: world methods
 
 }  // namespace rigidlab::lua

@@ -28,6 +28,7 @@ int open_library(lua_State* L) {
   open_record(L, lib);
   open_export_html(L, lib);
   open_view(L, lib);
+  open_joint(L, lib);
   lua_pushliteral(L, RIGIDLAB_VERSION);
   lua_setfield(L, lib, "version");
   return 1;
