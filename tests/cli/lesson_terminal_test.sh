@@ -123,7 +123,10 @@ built_in_line=$(screen | grep -n '^built-in lessons' | cut -d: -f1)
 course_line=$(screen | grep -n '^lessons from' | cut -d: -f1)
 [[ -n $built_in_line && -n $course_line ]] && ((built_in_line < course_line)) && pass ||
   fail "built-in at line '$built_in_line', course at '$course_line'"
-enter dzhanibekof
+type_text dzhanibekof
+wait_for "the menu's answer is echoed (no echo is for a lesson's keys only)" \
+  '^lesson number or id \(q quits\) > dzhanibekof$'
+key Enter
 wait_for "a typo at the menu gets the closest id" "^no lesson 'dzhanibekof'; did you mean 'dzhanibekov'\?$"
 wait_for "and the prompt again" '^lesson number or id \(q quits\) > $'
 sleep 0.3
