@@ -22,7 +22,7 @@ history() { tmux -S "$socket" capture-pane -p -J -S - 2>/dev/null || true; }
 count_on_screen() { history | grep -cE -- "$1" || true; }
 wait_count() {  # wait_count NAME REGEX N: until REGEX matches N lines of the screen
   case_name=$1
-  local deadline=$((SECONDS + 5))
+  local deadline=$((SECONDS + wait_limit))
   until (($(count_on_screen "$2") == $3)) || ((SECONDS > deadline)); do sleep 0.05; done
   (($(count_on_screen "$2") == $3)) && pass || fail "/$2/ on $(count_on_screen "$2") lines, want $3"
 }
@@ -199,7 +199,7 @@ if slow=$(slow_writes 300000); then
   history | grep -qE "${step_prompt}c\$" && pass || fail "the prompt line is '$(history | grep -E "$step_prompt" | head -1)'"
   rigidlab=$fast  # the session ends with the test: its slow writes would outlast wait_exit
 else
-  echo "strace cannot trace here: the slow-write case is skipped"
+  echo "no strace that can trace here, or a sanitizer build: the slow-write case is skipped"
 fi
 
 finish

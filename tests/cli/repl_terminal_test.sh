@@ -156,7 +156,7 @@ if slow=$(slow_writes 500000); then
   screen | grep -qE '^> 7$' && pass || fail "the line is '$(screen | grep -E '^> 7')'"
   rigidlab=$fast  # the session ends with the test: its slow writes would outlast wait_exit
 else
-  echo "strace cannot trace here: the slow-write case is skipped"
+  echo "no strace that can trace here, or a sanitizer build: the slow-write case is skipped"
 fi
 
 finish

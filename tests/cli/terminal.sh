@@ -40,10 +40,14 @@ type_text() { tmux -S "$socket" send-keys -l "$1"; }
 key() { tmux -S "$socket" send-keys "$@"; }
 enter() { type_text "$1"; key Enter; }
 
-# wait_for NAME REGEX: until a line of the screen matches REGEX (extended), 5 s at most.
+# How long the waits below wait for what should come at once: long, since a passing test never
+# waits it out and a sanitizer build under a loaded machine can take seconds for a step.
+wait_limit=15
+
+# wait_for NAME REGEX: until a line of the screen matches REGEX (extended), $wait_limit s at most.
 wait_for() {
   case_name=$1
-  local deadline=$((SECONDS + 5))
+  local deadline=$((SECONDS + wait_limit))
   until screen | grep -qE -- "$2"; do
     if ((SECONDS > deadline)); then
       fail "no line matching /$2/ on the screen:"
@@ -58,7 +62,7 @@ wait_for() {
 # wait_exit NAME STATUS: until rigidlab has ended, with that status.
 wait_exit() {
   case_name=$1
-  local deadline=$((SECONDS + 5))
+  local deadline=$((SECONDS + wait_limit))
   until [[ -s $scratch/status ]]; do
     if ((SECONDS > deadline)); then
       fail "rigidlab did not exit"
@@ -73,7 +77,7 @@ prompt_count() { screen | grep -cE '^> ' || true; }
 # wait_prompt NAME: until a new `> ` prompt has appeared after the last command.
 wait_prompt() {
   case_name=$1
-  local want=$2 deadline=$((SECONDS + 5))
+  local want=$2 deadline=$((SECONDS + wait_limit))
   until (($(prompt_count) >= want)); do
     if ((SECONDS > deadline)); then
       fail "no new prompt"
@@ -88,9 +92,12 @@ wait_prompt() {
 # slow_writes DELAY: prints the path of a wrapper that runs $rigidlab under strace with each of
 # its writes returning DELAY µs late (strace's fault injection): the moment between a prompt
 # and the program's switch to raw input, in which a key was echoed by the terminal, made long
-# enough to type into. Returns 1 where strace is missing or may not trace.
+# enough to type into. Returns 1 where strace is missing or may not trace, and for a
+# sanitizer build: AddressSanitizer makes writes of its own (every one delayed too) and
+# LeakSanitizer cannot run under ptrace.
 slow_writes() {
   command -v strace >/dev/null && strace -o /dev/null true 2>/dev/null || return 1
+  ! ldd "$rigidlab" 2>/dev/null | grep -q libasan || return 1
   cat >"$scratch/slow_writes" <<SCRIPT
 #!/bin/sh
 exec strace -o /dev/null -e trace=write -e inject=write:delay_exit=$1 '$rigidlab' "\$@"
