@@ -121,8 +121,8 @@ angle, so the rods keep their length to rounding.
 
 Semi-implicit Euler does not keep the energy: it swings a few per cent about the right
 value, most when the second ball whips round, without drifting away; RK4 holds it to a
-fraction of a per cent in the world (whose hinges are solved once per step) and to 1e-7 in
-the articulation.]],
+fraction of a per cent in the world, whose hinges the solver still enforces step by step,
+and to 1e-7 in the articulation.]],
       run = function(ctx)
         local E = closed_form_energy()
         local semi, _, _, j1, j2 = hinged_world("semi_implicit")
@@ -150,7 +150,7 @@ the articulation.]],
             rows[#rows + 1] = {semi.time, semi:energy(), rk4:energy(), art:energy(), drift}
           end
         end
-        ctx:table({"t (s)", "E semi-implicit", "E RK4", "E articulation", "hinge drift (m)"}, rows)
+        ctx:table({"t (s)", "E semi-implicit", "E RK4", "E articulation", "drift, semi (m)"}, rows)
         ctx:plot{{x = t, y = es, label = "world, semi-implicit"}, {x = t, y = er, label = "world, RK4"},
                  {x = t, y = ea, label = "articulation, RK4"},
                  title = "Energy over time (J)", xlabel = "t (s)", ylabel = "E (J)", height = 10}

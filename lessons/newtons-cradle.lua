@@ -96,7 +96,11 @@ contact is a collision of 003 "Collision Response" without friction or rotation,
 (e = 1): the impulse p̂ = (1 + e)(v₂ − v₁)·n/(1/m₁ + 1/m₂). For equal masses it swaps the two
 velocities. Applied one contact at a time, as 000's sequential impulses or 001 "Collisions"
 handle contacts, the swaps pass the 3 m/s along the row: ball 1 gives it to 2, 2 to 3, and
-so on, until ball 5 leaves alone. Two balls in: the same swaps, twice, and two leave.]],
+so on, until ball 5 leaves alone. Two balls in: the same swaps, twice, and two leave.
+
+(003 states the restitution law as (v₂' − v₁') = ε(v₂ − v₁), without the minus sign: after
+the collision the bodies separate, so the relative velocity along n changes sign,
+(v₂' − v₁')·n = −ε(v₂ − v₁)·n. Its impulse formula is the right one.)]],
       formula = "p̂ = (1 + e)·(v₂ − v₁)·n / (1/m₁ + 1/m₂)\ne = 1, m₁ = m₂:  v₁' = v₂,  v₂' = v₁",
       run = function(ctx)
         for _, moving in ipairs{1, 2} do
