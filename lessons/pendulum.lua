@@ -163,7 +163,7 @@ for the ball released at rest from (L sin θ₀, −L cos θ₀), the hinge at t
       text = [[
 Now the hinge itself: w:add_joint{type = "hinge", anchor = origin, axis = z} holds the ball
 1 m from the origin, released at rest at θ₀ toward +x. We step at 60 Hz (Δt = 1/60 s) and
-time three full swings from the moments θ crosses zero, with each solver (soft_step, the
+time two full swings from the moments θ crosses zero, with each solver (soft_step, the
 default, and sequential_impulses, 000's three steps) and with 1 or 4 substeps ("sub").
 
 What to expect: each step moves the bob along a straight chord that the joint then pulls
@@ -184,7 +184,7 @@ at the larger swings; soft_step's relax sweeps and position feedback keep it far
             local key = solver .. substeps
             worst[key] = 0
             for _, deg in ipairs(amplitudes) do
-              local measured, _, _, gap, drift = measure(deg, solver, substeps, 3)
+              local measured, _, _, gap, drift = measure(deg, solver, substeps, 2)
               local want = period(L_eq, deg)
               local err = measured / want - 1
               worst[key] = math.max(worst[key], math.abs(err))
