@@ -156,7 +156,8 @@ and rises until it has none left: h = v²/(2g) = 0.459 m. The others stay nearly
 bottom: nearly, because ball 1 meets ball 2 after swinging 5 mm on its string, its path
 tilted by gap/L = 0.005 rad, so about 3·0.005 = 0.015 m/s of its velocity is not along the
 row; that is a rise of some (0.015)²/(2g) ≈ 1e-5 m, and we allow 1e-4 m. Then ball 5 swings
-back, and ball 1 goes out: the chart follows each ball's sideways displacement for 3 s.]],
+back, and ball 1 goes out: the chart follows each ball's sideways displacement for 3 s, and
+the film strip shows the first 0.6 s (rigidlab view, or w:view{} in the REPL, shows it live).]],
       formula = "h = v² / (2g)",
       run = function(ctx)
         local h = speed ^ 2 / (2 * g)
@@ -178,6 +179,13 @@ back, and ball 1 goes out: the chart follows each ball's sideways displacement f
         for i = 2, 4 do
           ctx:expect_range(string.format("ball %d stays down (m)", i), highest[i], nil, 1e-4)
         end
+        local film, film_balls = cradle(1, gap)
+        ctx:motion(film, {seconds = 0.6, frames = 4})
+        local b5 = film_balls[5]
+        local swing_energy = mass * g * b5.position.y + 0.5 * mass * b5.velocity:dot(b5.velocity)
+        ctx:show("after 0.6 s, ball 5's energy m·g·y + ½mv² (J)", swing_energy)
+        ctx:expect("ball 5 carries all the energy", swing_energy, 0.5 * mass * speed ^ 2,
+                   {rel = 2e-3, reason = "the world keeps the energy to 0.1 % (above)"})
       end,
     },
     {
