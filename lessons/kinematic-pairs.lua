@@ -21,6 +21,7 @@ local pairs_list = {
   {type = "ball", slide = "3 rotational", dof = 3, v = 0, w = 3},
   {type = "planar", slide = "\"3 translational\"", dof = 3, v = 2, w = 1},
   {type = "fixed", slide = "(not listed)", dof = 0, v = 0, w = 0},
+  {type = "distance", slide = "(not listed)", dof = 5, v = 2, w = 3},
 }
 
 -- A small linear congruential generator (Knuth's MMIX constants) so every run draws the same
@@ -69,6 +70,8 @@ local function allowed(p)
     ball = {{zero, vec3(1, 0, 0)}, {zero, vec3(0, 1, 0)}, {zero, vec3(0, 0, 1)}},
     planar = {{t1, zero}, {t2, zero}, {zero, axis}},
     fixed = {},
+    distance = {{vec3(1, 0, 0), zero}, {vec3(0, 0, 1), zero}, {zero, vec3(1, 0, 0)},
+                {zero, vec3(0, 1, 0)}, {zero, vec3(0, 0, 1)}},
   }
   return basis[p.type]
 end
@@ -99,7 +102,9 @@ local function survivors(p, step)
   local w = world{gravity = vec3(0, 0, 0), solver = "sequential_impulses"}
   w.iterations = 50
   local box = w:add(body.box{mass = mass, size = size})
-  if p.type then
+  if p.type == "distance" then     -- a rod from the box's centre to a hook 1 m above it
+    w:add_joint{type = "distance", a = box, a_point = vec3(0, 0, 0), b_point = vec3(0, 1, 0)}
+  elseif p.type then
     local takes_axis = p.type ~= "ball" and p.type ~= "fixed"
     w:add_joint{type = p.type, a = box, axis = takes_axis and axis or nil,
                 pitch = p.type == "screw" and pitch or nil}
@@ -176,6 +181,11 @@ during the step, |ω|(|ω| + |v|)Δt, the last column; that is why the blows are
 most 0.01 N·s a component) and the step short (0.01 ms): the leftover then sits some 1e-8
 below the motions the rank counts, and shrinks in proportion to Δt (step 3). (Rounding adds
 1e-14 to the bound we check.)
+
+Two joints are not on the slide: fixed (no freedom at all) and distance, a rigid rod from
+the box's centre to a point 1 m above it, which forbids only moving along the rod: 5
+freedoms, 2 of them translational (square to the rod) and all 3 rotations (the rod is
+fixed to the box's centre, so turning the box does not move it).
 
 The counts agree with the slide except for one word: a planar pair (a puck on a table)
 slides in two directions in the plane and turns about the plane's normal, 2 translational +
