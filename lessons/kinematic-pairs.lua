@@ -146,7 +146,8 @@ return lesson{
 000 "Degree of freedom" describes how a body can move by its translational and rotational
 degrees of freedom. To count them without trusting any formula, we strike a box (1 kg,
 0.4 × 0.2 × 0.3 m, at rest at the origin) 12 times, each time from rest, with a random
-impulse at a random point of it, take one short step (0.1 ms, no gravity) and keep the
+impulse (each component at most 0.01 N·s) at a random point of it, take one short step
+(0.01 ms, no gravity) and keep the
 velocity v of its centre and its angular velocity ω. The number of independent directions
 among those 12 six-vectors (v, ω), the rank of their matrix, is the number of freedoms the
 blows could reach. For a free body: 6, 3 of them in v and 3 in ω.]],
