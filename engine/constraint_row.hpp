@@ -16,7 +16,7 @@
 // The effective mass (001_* Appendix D) is 1/(J W Jᵀ), W the block-diagonal inverse mass
 // (m_a⁻¹ E, I_a⁻¹, m_b⁻¹ E, I_b⁻¹, world frame). coupling() below is the one place in the
 // engine where J W Jᵀ is written: the solver's rows, the manifold block matrices and
-// collide.effective_mass / collide.resolve (engine/collision.hpp) all call it.
+// collide.effective_mass / collide.resolve (engine/impulses.hpp) all call it.
 //
 // Soft rows (E. Catto, "Soft Step", Solver2D notes and Box2D v3's b2MakeSoft; E. Catto, "Soft
 // Constraints", GDC 2011): the velocity constraint J v + β C = 0 is replaced by

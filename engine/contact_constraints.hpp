@@ -1,6 +1,6 @@
 // The contacts of a step as constraints of the shared solver (engine/solver.hpp): found between
 // the bodies' shapes and the static planes (engine/contact_finder.cpp: broad phase, narrow
-// phase engine/contacts.hpp, speculative contacts and their time of impact), each point three
+// phase engine/narrow_phase.hpp, speculative contacts and their time of impact), each point three
 // rows of engine/constraint_row.hpp (the normal and two friction directions), solved by the
 // solver's stages, then stored for warm starting the next step.
 //
@@ -14,7 +14,7 @@
 //   velocity) before the solve, the second across it; any orthonormal pair when it does not
 //   slip (Duff et al., JCGT 2017). Sliding friction then opposes the slip, as Coulomb's law.
 // - Warm starting: a point that touched in the previous step (same bodies or plane, same
-//   `feature`, engine/contacts.hpp) starts from the impulses it ended the previous step's
+//   `feature`, engine/narrow_phase.hpp) starts from the impulses it ended the previous step's
 //   sweeps with, scaled by the ratio of the time steps; the friction impulse is kept as a world
 //   vector and re-projected on the new tangents. A point whose feature is new continues the
 //   nearest point of the previous step within match_distance (the position matching of
@@ -107,7 +107,7 @@
 #include "engine/body_store.hpp"
 #include "engine/constraint_row.hpp"
 #include "engine/contact_pairs.hpp"
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 #include "engine/plane.hpp"
 #include "engine/solver_settings.hpp"
 #include "engine/step_poll.hpp"

@@ -1,5 +1,5 @@
 // The contact constraints, part 1: finding the contacts of a step (the candidate pairs of the
-// broad phase, engine/contact_pairs.hpp; the narrow phase, engine/contacts.hpp;
+// broad phase, engine/contact_pairs.hpp; the narrow phase, engine/narrow_phase.hpp;
 // speculative contacts and their time of impact) and turning each point into rows.
 // See engine/contact_constraints.hpp.
 #include <algorithm>
@@ -200,7 +200,7 @@ void ContactConstraints::add_manifold(const std::vector<Body>& bodies, const rig
     Point p{};
     p.feature = found.feature;
     p.point = found.point;
-    // Witness points (engine/contacts.hpp): on a at point − n g/2, on b at point + n g/2,
+    // Witness points (engine/narrow_phase.hpp): on a at point − n g/2, on b at point + n g/2,
     // stored in body coordinates of the poses they were found at.
     const double gap = -found.depth;
     const Vec3 witness_a = found.point - 0.5 * gap * c.normal;

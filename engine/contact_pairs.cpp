@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "engine/contact_helpers.hpp"
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 
 namespace rigidlab {
 

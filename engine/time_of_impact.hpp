@@ -2,7 +2,7 @@
 // "Impulse-based Dynamic Simulation of Rigid Body Systems", PhD thesis, Berkeley 1996, 3.4;
 // E. Catto, "Continuous Collision", GDC 2013). Each body moves with constant velocity v and
 // angular velocity ω (world) over the step. From t = 0, with d a lower bound on the distance
-// at t (engine/contacts.hpp separation) and s a bound on how fast it can shrink,
+// at t (engine/narrow_phase.hpp separation) and s a bound on how fast it can shrink,
 //   s = |v_b − v_a| + |ω_a| R_a + |ω_b| R_b   (R the bounding radius about the centre),
 // the shapes cannot touch before t + d/s, so t advances by d/s until d is within the
 // tolerance (a touch) or t passes the end of the step (a miss). Used by the contact solver to
@@ -11,7 +11,7 @@
 #pragma once
 
 #include "engine/body.hpp"
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 #include "engine/plane.hpp"
 
 namespace rigidlab {

@@ -1,4 +1,4 @@
-// collide: the collision impulses of engine/collision.hpp on their own, to compute by hand
+// collide: the collision impulses of engine/impulses.hpp on their own, to compute by hand
 // what a world does at every contact: collide.impulse_1d, collide.resolve,
 // collide.inverse_mass_matrix, collide.effective_mass.
 // Sources: 001_* "System Of Particles", "Collisions", Appendices C and D; 002_* "Inverse Mass
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-#include "engine/collision.hpp"
+#include "engine/impulses.hpp"
 #include "lua/binding.hpp"
 #include "lua/body.hpp"
 #include "lua/modules.hpp"

@@ -1,4 +1,4 @@
-// engine/time_of_impact.hpp and the separation bounds of engine/contacts.hpp against hand
+// engine/time_of_impact.hpp and the separation bounds of engine/narrow_phase.hpp against hand
 // geometry: the time a sphere needs to reach a plane or another sphere at constant velocity
 // (gap / closing speed), misses, a turning box, and the separating-axis bound for two boxes
 // against the exact distance of their nearest corners.

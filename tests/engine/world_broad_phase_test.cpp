@@ -1,6 +1,6 @@
 // The world's bodies in the broad phase (engine/contact_pairs.hpp), judged against the
 // brute-force answer: every pair of bodies the narrow phase finds a contact for within the
-// step's margin (all n² pairs tested by engine/contacts.hpp) must be a candidate pair, while
+// step's margin (all n² pairs tested by engine/narrow_phase.hpp) must be a candidate pair, while
 // bodies move, spin, are removed and added (their slots reused under new generations), and
 // change between static and moving; the pairs come sorted by the bodies' ids and name the
 // bodies by their present indices.
@@ -14,7 +14,7 @@
 
 #include "engine/body_store.hpp"
 #include "engine/contact_pairs.hpp"
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 
 namespace rigidlab {
 namespace {

@@ -1,8 +1,8 @@
-// engine/contacts.hpp against geometry worked out by hand: depths, normals and points of
+// engine/narrow_phase.hpp against geometry worked out by hand: depths, normals and points of
 // spheres, planes and boxes in known configurations (rotated boxes included), the witness
 // points on both surfaces, the margin of speculative contacts, and features that stay the
 // same while the same features touch.
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 
 #include <gtest/gtest.h>
 

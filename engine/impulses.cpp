@@ -1,4 +1,4 @@
-#include "engine/collision.hpp"
+#include "engine/impulses.hpp"
 
 #include <algorithm>
 #include <cmath>

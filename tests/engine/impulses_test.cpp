@@ -1,9 +1,9 @@
-// engine/collision.hpp against the documents' numbers and against physics that does not use
+// engine/impulses.hpp against the documents' numbers and against physics that does not use
 // the code under test: conservation of linear and angular momentum, the kinetic energy lost
 // ½(1 − e²) m_eff v_n², Newton's restitution law, rolling without slipping (v = 5/7 v₀ for a
 // solid sphere), the Coulomb limit, the 12x12 J W Jᵀ of 001_* Appendix D, and the velocity
 // change an impulse causes through Body's own apply_impulse.
-#include "engine/collision.hpp"
+#include "engine/impulses.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "engine/contacts.hpp"
+#include "engine/narrow_phase.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -358,7 +358,7 @@ double separation(const Shape& a, const Pose& pose_a, const Shape& b, const Pose
         separating_axes(pose_a, a.half_extents, pose_b, b.half_extents, infinity);
     return std::max({axes.best[0], axes.best[1], axes.best[2]});
   }
-  // With a sphere the closest points are exact (engine/contacts.hpp): the gap of the point.
+  // With a sphere the closest points are exact (engine/narrow_phase.hpp): the gap of the point.
   const Manifold m = collide_shapes(a, pose_a, b, pose_b, infinity);
   return m.count > 0 ? -m.points[0].depth : infinity;
 }
