@@ -141,6 +141,21 @@ EOF
 timed "a stopped step leaves the world unchanged" 3 -- "$rigidlab" --timeout 1 "$scratch/consistent.lua"
 expect_stdout $'false\t'"$scratch"$'/consistent.lua:8: stopped: the time limit (1 s) reached\ntrue\ttrue\n'
 
+# A limit in a run of steps keeps the steps completed before it and says how many (issue 12
+# item 19: the whole call was rolled back, 2 s of a 20 s run left w.time = 0).
+cat >"$scratch/run_of_steps.lua" <<'EOF'
+local w = world{}
+w:add_plane{normal = vec3(0, 1, 0), offset = 0}
+for i = 0, 99 do w:add(body.box{mass = 1, size = vec3(1, 1, 1), position = vec3(i % 10 * 1.01, 0.5 + i // 10, 0)}) end
+local ok, message = pcall(w.step, w, 0.01, 1000000)
+local k = tonumber(message:match("%((%d+) of 1000000 steps completed; the world is at t = "))
+print(ok, message:find("stopped: the time limit (1 s) reached", 1, true) ~= nil, k ~= nil and k > 0,
+      k ~= nil and math.abs(w.time - k * 0.01) < 1e-9)
+EOF
+timed "a stopped run of steps keeps the completed ones and says how many" 3 -- \
+  "$rigidlab" --timeout 1 "$scratch/run_of_steps.lua"
+expect_stdout $'false\ttrue\ttrue\ttrue\n'
+
 timed "-e is limited too" 3 -- "$rigidlab" --timeout 0.5 -e 'while true do end'
 expect_status 1
 expect_stderr_line 1 "rigidlab: (command line):1: stopped: the time limit (0.5 s) reached"
