@@ -1,8 +1,6 @@
 #include "engine/solver.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
 #include "engine/integrators.hpp"
 #include "engine/joint.hpp"
@@ -318,7 +316,6 @@ void Solver::solve() {
 }
 
 void Solver::integrate_positions() {
-  if (getenv("SDEBUG") && bodies_.size() > 1) fprintf(stderr, "after solve w0=(%g %g %g)\n", bodies_[0].angular_velocity.x(), bodies_[0].angular_velocity.y(), bodies_[0].angular_velocity.z());
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     SolverBody& b = bodies_[i];
     b.delta_position = h_ * (b.velocity + pushes_[i].velocity);
@@ -338,9 +335,7 @@ void Solver::relax() {
 }
 
 void Solver::restitution() {
-  if (getenv("SDEBUG") && bodies_.size() > 1) fprintf(stderr, "before restitution w0=(%g %g %g)\n", bodies_[0].angular_velocity.x(), bodies_[0].angular_velocity.y(), bodies_[0].angular_velocity.z());
   contacts_.restitution(bodies_.data(), accelerations_.data(), poll);
-  if (getenv("SDEBUG") && bodies_.size() > 1) fprintf(stderr, "after restitution w0=(%g %g %g)\n", bodies_[0].angular_velocity.x(), bodies_[0].angular_velocity.y(), bodies_[0].angular_velocity.z());
 }
 
 // ---- sequential_impulses' position correction ----------------------------------------------------
