@@ -39,8 +39,8 @@ struct JointRow {
   double hertz = 0.0;              // spring (> 0)
   double damping_ratio = 0.0;      // spring
   double kp = 0.0, kv = 0.0;       // motor: N/m or N m/rad, N s/m or N m s/rad
-  // Equality rows that hold one point or one orientation together are solved as a block:
-  // the first row of such a block says how many rows it has (2 or 3); the others say 0.
+  // A joint's equality rows are solved together as one block: the first row of the block
+  // says how many rows it has (2 to 6); the others say 0.
   std::uint8_t block = 1;
 };
 

@@ -224,33 +224,25 @@ void Joint::build_rows(const Body& a, const Body* b, JointRow* rows) const {
   const Frame f = frame(a, b);
   int n = 0;
   const Vec3 d = f.pb - f.pa;
-  auto block = [&](int size) {  // the last `size` rows are one block
-    rows[n - size].block = static_cast<std::uint8_t>(size);
-    for (int i = 1; i < size; ++i) rows[n - size + i].block = 0;
-  };
   auto point_rows = [&] {  // 000 "Kinematic pair": the anchors coincide
     for (int i = 0; i < 3; ++i) {
       const Vec3 e = Vec3::Unit(i);
       rows[n++] = equality(point_jacobian(e, f.ra, f.rb), e.dot(d));
     }
-    block(3);
   };
   auto across_rows = [&] {  // the anchors' separation across the axis is zero
     for (const Vec3& p : {f.p1, f.p2})
       rows[n++] = equality(separation_jacobian(p, f.ra, f.pa, f.xb), p.dot(d));
-    block(2);
   };
   auto align_rows = [&] {  // the axes stay parallel: the angle from u_b to u_a is u_b × u_a
     const Vec3 misalignment = f.ub.cross(f.ua);
     for (const Vec3& p : {f.p1, f.p2})
       rows[n++] = equality(angular_jacobian(p), -p.dot(misalignment));
-    block(2);
   };
   auto lock_rows = [&] {  // the relative orientation stays as at creation
     const Vec3 theta = rotation_vector(f.qa * reference_.conjugate() * f.qb.conjugate());
     for (int i = 0; i < 3; ++i)
       rows[n++] = equality(angular_jacobian(Vec3::Unit(i)), -theta[i]);
-    block(3);
   };
   switch (type_) {
     case JointKind::ball: point_rows(); break;
@@ -295,6 +287,11 @@ void Joint::build_rows(const Body& a, const Body* b, JointRow* rows) const {
       }
       break;
     }
+  }
+  // The equality rows (all at the start) are solved as one block (engine/solver.cpp).
+  if (n > 1 && rows[0].kind == JointRow::Kind::equality) {
+    rows[0].block = static_cast<std::uint8_t>(n);
+    for (int i = 1; i < n; ++i) rows[i].block = 0;
   }
   if (driven_coordinate(type_) == JointCoordinate::none) return;
   double q = 0.0;

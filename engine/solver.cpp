@@ -68,23 +68,24 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
 // of its K; a block whose K cannot be inverted (neither body can move along some row) is
 // solved row by row.
 void Solver::group_rows(std::size_t first) {
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_block, max_block>;
   for (std::size_t k = 0; k < scratch_.size();) {
-    const int size = std::clamp<int>(scratch_[k].block, 1, 3);
+    const int size = std::clamp<int>(scratch_[k].block, 1, max_block);
     Group g{static_cast<std::uint32_t>(first + k), 1, 0};
     if (size > 1 && k + static_cast<std::size_t>(size) <= scratch_.size()) {
-      Mat3 K = Mat3::Identity();
+      Small K(size, size);
       const Row* rows = &rows_[first + k];
       for (int i = 0; i < size; ++i)
         for (int j = 0; j < size; ++j)
           K(i, j) = coupling(rows[i].row.jacobian, rows[j].row.jacobian, bodies_[rows[0].a],
                              bodies_[rows[0].b]);
-      Mat3 inverse;
-      bool invertible = false;
-      double determinant = 0.0;
-      K.computeInverseAndDetWithCheck(inverse, determinant, invertible);
-      const double scale = K.diagonal().head(size).prod();
-      if (invertible && std::isfinite(determinant) && determinant > 1e-12 * scale) {
-        if (size == 2) inverse.row(2).setZero(), inverse.col(2).setZero();
+      // K is symmetric positive semi-definite; a pivot far below the largest diagonal entry
+      // means two rows ask nearly the same of the bodies (or neither can move along one).
+      const Eigen::LLT<Small> llt(K);
+      const double smallest = llt.matrixLLT().diagonal().cwiseAbs().minCoeff();
+      if (llt.info() == Eigen::Success && smallest * smallest > 1e-12 * K.diagonal().maxCoeff()) {
+        BlockMatrix inverse = BlockMatrix::Zero();
+        inverse.topLeftCorner(size, size) = llt.solve(Small::Identity(size, size));
         g.size = static_cast<std::uint8_t>(size);
         g.block = static_cast<std::uint32_t>(block_inverse_.size());
         block_inverse_.push_back(inverse);
@@ -219,7 +220,7 @@ double Solver::sweep_joints(bool forward) {
     const Group& g = groups_[forward ? k : n - 1 - k];
     Row& r = rows_[g.first];
     if (g.size > 1) {
-      double bias[3];
+      double bias[max_block];
       for (int i = 0; i < g.size; ++i) bias[i] = rows_[g.first + i].bias;
       largest = std::max(largest, solve_block(g, bodies_.data(), bias, rigid_softness, false));
       continue;
@@ -246,7 +247,7 @@ double Solver::solve_block(const Group& g, SolverBody* set, const double* bias,
   Row* rows = &rows_[g.first];
   SolverBody& a = set[rows[0].a];
   SolverBody& b = set[rows[0].b];
-  Vec3 rhs = Vec3::Zero(), impulse = Vec3::Zero();
+  BlockVector rhs = BlockVector::Zero(), impulse = BlockVector::Zero();
   double largest = 0.0;
   for (int i = 0; i < g.size; ++i) {
     const double v = row_velocity(rows[i].row, a, b);
@@ -254,7 +255,7 @@ double Solver::solve_block(const Group& g, SolverBody* set, const double* bias,
     rhs[i] = soft.mass_scale * v + bias[i];
     impulse[i] = push ? rows[i].push_impulse : rows[i].row.impulse;
   }
-  const Vec3 change = -(block_inverse_[g.block] * rhs) - soft.impulse_scale * impulse;
+  const BlockVector change = -(block_inverse_[g.block] * rhs) - soft.impulse_scale * impulse;
   for (int i = 0; i < g.size; ++i) {
     apply_row(rows[i].row, a, b, change[i]);
     (push ? rows[i].push_impulse : rows[i].row.impulse) += change[i];
@@ -272,7 +273,7 @@ void Solver::push_joints(bool forward, bool feedback) {
     Row& r = rows_[g.first];
     if (g.size > 1) {
       if (!feedback) continue;
-      double bias[3];
+      double bias[max_block];
       for (int i = 0; i < g.size; ++i)
         bias[i] = r.soft.mass_scale * r.soft.bias_rate * rows_[g.first + i].error;
       solve_block(g, pushes_.data(), bias, r.soft, true);

@@ -135,7 +135,10 @@ class Solver {
     std::uint32_t a, b;   // solver slots
     JointRow::Kind kind;
   };
-  struct Group {  // rows solved together: one row, or a block of 2 or 3 equality rows
+  static constexpr int max_block = 6;
+  using BlockMatrix = Eigen::Matrix<double, max_block, max_block>;
+  using BlockVector = Eigen::Matrix<double, max_block, 1>;
+  struct Group {  // rows solved together: one row, or a block of 2 to 6 equality rows
     std::uint32_t first;
     std::uint8_t size;
     std::uint32_t block;  // index in block_inverse_ when size > 1
@@ -159,7 +162,7 @@ class Solver {
   std::vector<JointRow> scratch_;
   std::vector<JointRow> ahead_;
   std::vector<Group> groups_;
-  std::vector<Mat3> block_inverse_;  // K⁻¹ of each block (2 x 2 blocks padded with zeros)  // the rows at the poses the free velocities reach
+  std::vector<BlockMatrix> block_inverse_;  // K⁻¹ of each block, padded with zeros  // the rows at the poses the free velocities reach
   const std::vector<JointRef>* joints_ = nullptr;
   std::vector<double> report_;
   double h_ = 0.0;

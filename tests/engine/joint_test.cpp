@@ -132,10 +132,10 @@ TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
   }
   std::printf("chain: worst joint error %.3g m, energy %.6g -> highest %.6g (start %.6g)\n",
               worst, w.energy(), highest, e0);
-  // NOT YET the 1 mm: 10 Gauss-Seidel sweeps at one substep leave 5.6 mm (the top
-  // joints carry the chain's load, and the residual of the sweeps is 0.03 m/s at the first
-  // step); 100 sweeps give 1.9 mm, 4 substeps 1.2 mm.
-  EXPECT_LT(worst, 6e-3);
+  // NOT YET the 1 mm: 10 Gauss-Seidel sweeps at one substep leave 3.9 mm (each
+  // joint is solved exactly as a block, but the chain's load passes from joint to joint one
+  // sweep at a time: the residual is still 0.03 m/s after 10 sweeps of the first step).
+  EXPECT_LT(worst, 4.5e-3);
   // Energy is measured from its size: the chain's potential energy is negative (below the
   // pivot), so "rising by 1 %" is 1 % of the kinetic energy it can reach, |E0|.
   EXPECT_LE(highest - e0, 0.01 * std::abs(e0));
