@@ -65,6 +65,10 @@ class Constraint {
   virtual void track(const Body&, const Body*) {}
   // The energy stored in the joint's springs (J) at the bodies' present poses.
   virtual double potential_energy(const Body&, const Body*) const { return 0.0; }
+  // Where the joint attaches, in world coordinates, for drawing: the point carried by a and
+  // the point carried by b (a fixed world point when b is the world). They coincide for a
+  // joint that holds its anchor and are a rod's two ends for a distance joint.
+  virtual void attachment_points(const Body& a, const Body* b, Vec3& on_a, Vec3& on_b) const = 0;
   // The accumulated impulse of each row over the last substep (N s or N m s, in the order the
   // rows are built; empty before the first step). The next step is warm started from them.
   const std::vector<double>& impulses() const { return impulses_; }

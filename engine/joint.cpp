@@ -398,6 +398,10 @@ double Joint::potential_energy(const Body& a, const Body* b) const {
 }
 
 Vec3 Joint::world_anchor(const Body& a) const { return to_world(a, local_anchor_a_); }
+void Joint::attachment_points(const Body& a, const Body* b, Vec3& on_a, Vec3& on_b) const {
+  on_a = to_world(a, local_anchor_a_);
+  on_b = b != nullptr ? to_world(*b, local_anchor_b_) : local_anchor_b_;
+}
 Vec3 Joint::world_axis(const Body* b) const {
   return b != nullptr ? Vec3(b->orientation * local_axis_b_) : local_axis_b_;
 }

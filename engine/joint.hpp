@@ -111,6 +111,7 @@ class Joint final : public Constraint {
   // violated limits), each the root sum of squares.
   void error(const Body& a, const Body* b, double& position, double& angle) const;
   Vec3 world_anchor(const Body& a) const;
+  void attachment_points(const Body& a, const Body* b, Vec3& on_a, Vec3& on_b) const override;
   Vec3 world_axis(const Body* b) const;
 
   // Changes take effect at the next step; they forget the impulses the next step would be

@@ -125,6 +125,30 @@ void add_contacts(present::Scene& scene, const World& world, double typical) {
     scene.notes.push_back({present::Overlay::impulse, "(largest " + number(largest) + " N s)", ""});
 }
 
+// Each joint as document 000 draws a kinematic pair: a marker where it attaches, and lines
+// from each body's COM to its attachment point (and between the two points, a rod's length
+// for a distance joint), so a chain reads as a chain.
+void add_joints(present::Scene& scene, const World& world) {
+  const BodyStore& store = world.store();
+  for (std::size_t i = 0; i < world.constraint_count(); ++i) {
+    const Constraint& joint = world.constraint(i);
+    if (!store.contains(joint.body_a())) continue;
+    const Body& a = store.get(joint.body_a());
+    const Body* b = joint.body_b().valid() && store.contains(joint.body_b())
+                        ? &store.get(joint.body_b()) : nullptr;
+    Vec3 on_a, on_b;
+    joint.attachment_points(a, b, on_a, on_b);
+    if (!on_a.allFinite() || !on_b.allFinite()) continue;
+    std::vector<Vec3> line{a.position, on_a};
+    if ((on_b - on_a).norm() > 0.0) line.push_back(on_b);
+    if (b != nullptr) line.push_back(b->position);
+    scene.curves.push_back(present::SceneCurve{present::Overlay::joint, line});
+    scene.markers.push_back(present::SceneMarker{present::Overlay::joint, on_a});
+    if ((on_b - on_a).norm() > 0.0)
+      scene.markers.push_back(present::SceneMarker{present::Overlay::joint, on_b});
+  }
+}
+
 }  // namespace
 
 present::Scene scene_from_world(const World& world, const SceneRequest& request) {
@@ -158,6 +182,7 @@ present::Scene scene_from_world(const World& world, const SceneRequest& request)
     scene.notes.push_back({present::Overlay::ellipsoid, "ωᵀIω = 2T: the tip of ω stays on it",
                            "w.I.w = 2T: the tip of w stays on it"});
   if (request.contacts) add_contacts(scene, world, typical);
+  if (request.joints) add_joints(scene, world);
   for (const std::vector<Vec3>& trail : request.trails)
     if (trail.size() > 1) scene.curves.push_back(present::SceneCurve{present::Overlay::trail, trail});
   return scene;

@@ -125,6 +125,32 @@ T.case("art:render draws links from their joints, with joint markers", function(
   T.fails(function() art:render{width = 3} end, "field 'width' must be an integer from 10 to 1000")
 end)
 
+T.case("w:render's 'joints' overlay draws each joint where it attaches", function()
+  local w = world{gravity = vec3(0, 0, 0)}
+  local b = body.sphere{mass = 1, radius = 0.1, position = vec3(1, 0, 0)}
+  w:add(b)
+  w:add_joint{type = "hinge", a = b, anchor = vec3(0, 0, 0), axis = vec3(0, 0, 1)}
+  local view = {width = 41, height = 21, ascii = true, legend = false,
+                camera = {eye = vec3(0.5, 0, 6), target = vec3(0.5, 0, 0)}}
+  T.equal(find_cell(lines_of(w:render(view)), "o"), nil, "no marker without the overlay")
+  view.show = "joints"
+  local lines = lines_of(w:render(view))
+  local anchor, row = find_cell(lines, "o")
+  -- the camera looks at x = 0.5 from 6 m: the anchor (x = 0) is left of the centre column
+  assert(anchor and anchor < 21, "a marker left of the centre: " .. table.concat(lines, "\n"))
+  assert(lines[row]:sub(anchor + 1, anchor + 5):find("^%-+$"), "a line from it towards the COM")
+  -- a rod between two bodies: a marker at each end, on the bodies' row
+  local v = world{gravity = vec3(0, 0, 0)}
+  local p, q = body.sphere{mass = 1, radius = 0.05, position = vec3(-1, 0, 0)},
+               body.sphere{mass = 1, radius = 0.05, position = vec3(2, 0, 0)}
+  v:add(p) v:add(q)
+  v:add_joint{type = "distance", a = p, b = q}
+  local rod = lines_of(v:render(view))
+  local first, at = find_cell(rod, "o")
+  local second = first and rod[at]:find("o", first + 1, true)
+  assert(first and second and second - first > 10, "two ends far apart: " .. table.concat(rod, "\n"))
+end)
+
 T.case("w:view checks its options, and needs a terminal", function()
   local w = spinning_box()
   T.fails(function() w:view{dt = 0} end,
