@@ -117,7 +117,7 @@ int check_in_child(const LessonFile& file, const Limits& limits, int report_fd) 
       context.ended = true;
       state.end_run();
     } else {
-      result.error = "cannot create the Lua state: the memory limit is too small";
+      result.error = std::string("cannot create the Lua state: ") + state_failure_reason(limits);
     }
   }
   result.seconds = seconds_since(start);

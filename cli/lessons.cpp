@@ -494,7 +494,8 @@ Outcome present_lesson(const LessonCatalog& catalog, const LessonFile& file,
   LimitedState state(limits, WhenStuck::exit);
   lua_State* L = state.get();
   if (L == nullptr) {
-    std::fprintf(stderr, "rigidlab: cannot create the Lua state: not enough memory\n");
+    std::fprintf(stderr, "rigidlab: cannot create the Lua state: %s\n",
+                 state_failure_reason(limits));
     return {1, Next::quit};
   }
   lua_pushcfunction(L, present_protected);

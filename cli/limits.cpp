@@ -236,4 +236,8 @@ TimedRun::~TimedRun() {
   if (state_ != nullptr) state_->end_run();
 }
 
+const char* state_failure_reason(const Limits& limits) {
+  return limits.max_memory_megabytes > 0 ? "the memory limit is too small" : "not enough memory";
+}
+
 }  // namespace rigidlab::cli

@@ -46,6 +46,10 @@ constexpr double stuck_grace_seconds = 1.0;
 
 // A Lua state created with the limits' allocator, hook and stop check. It closes the state in
 // its destructor.
+// Why a LimitedState with these limits could not be created, for "cannot create the Lua
+// state: ...".
+const char* state_failure_reason(const Limits& limits);
+
 class LimitedState {
  public:
   LimitedState(const Limits& limits, WhenStuck when_stuck);

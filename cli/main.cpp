@@ -80,8 +80,7 @@ int run_lua(int argc, char** argv, const Options& options) {
   lua_State* L = state.get();
   if (L == nullptr) {
     std::fprintf(stderr, "rigidlab: cannot create the Lua state: %s\n",
-                 options.limits.max_memory_megabytes > 0 ? "the memory limit is too small"
-                                                     : "not enough memory");
+                 state_failure_reason(options.limits));
     return 1;
   }
   lua_gc(L, LUA_GCSTOP);  // no collection while the libraries are built

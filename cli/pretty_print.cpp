@@ -14,6 +14,7 @@
 #include "cli/limits.hpp"
 #include "cli/lua_names.hpp"
 #include "lua/binding.hpp"
+#include "lua/text_layout.hpp"
 
 namespace rigidlab::cli {
 namespace {
@@ -24,30 +25,9 @@ constexpr std::size_t max_string = 200;    // bytes of a string or tostring insi
 constexpr std::size_t max_total = 20000;   // bytes of one value's leaves; then "…"
 constexpr int poll_interval = 1024;        // keys between two polls of Ctrl-C and the clock
 
-// A string as a Lua literal: quoted, escaped, cut after max_string bytes.
+// A string as a Lua literal, cut after max_string bytes.
 std::string quoted(const char* text, std::size_t length) {
-  std::string result = "\"";
-  const std::size_t shown = std::min(length, max_string);
-  for (std::size_t i = 0; i < shown; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '"' || c == '\\') {
-      result += '\\';
-      result += static_cast<char>(c);
-    } else if (c == '\n') {
-      result += "\\n";
-    } else if (c == '\t') {
-      result += "\\t";
-    } else if (c < 32 || c == 127) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\%d", c);
-      result += escape;
-    } else {
-      result += static_cast<char>(c);  // UTF-8 passes as it is
-    }
-  }
-  result += '"';
-  if (shown < length) result += "… (" + std::to_string(length) + " bytes)";
-  return result;
+  return lua::quoted(text, length, max_string);
 }
 
 // The terminal's width, or COLUMNS, or 80.

@@ -84,8 +84,7 @@ int view_command(const std::vector<std::string>& arguments) {
   lua_State* L = state.get();
   if (L == nullptr) {
     std::fprintf(stderr, "rigidlab: cannot create the Lua state: %s\n",
-                 limits.max_memory_megabytes > 0 ? "the memory limit is too small"
-                                                 : "not enough memory");
+                 state_failure_reason(limits));
     return 1;
   }
   lua_gc(L, LUA_GCSTOP);

@@ -113,30 +113,6 @@ bool is_identifier(const char* text, size_t length) {
   return true;
 }
 
-// A string in double quotes, with \" \\ and escapes for control bytes: a trailing space or a
-// newline in a label is visible.
-std::string quoted(const char* text, size_t length) {
-  std::string out = "\"";
-  for (size_t i = 0; i < length; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c < 0x20 || c == 0x7f) {
-      char escape[8];
-      std::snprintf(escape, sizeof escape, "\\%d", c);
-      out += escape;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
 // A key as a path step: ".name" (just "name" first), "[2]", "[\"a b\"]", "[true]".
 std::string path_step(lua_State* L, int key, bool first) {
   size_t length = 0;

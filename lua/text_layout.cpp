@@ -1,6 +1,7 @@
 #include "lua/text_layout.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace rigidlab::lua {
@@ -92,6 +93,31 @@ std::string truncate_to_width(const std::string& text, std::size_t width) {
   std::string cut = text.substr(0, end);
   while (!cut.empty() && cut.back() == ' ') cut.pop_back();
   return cut + "…";
+}
+
+std::string quoted(const char* text, std::size_t length, std::size_t max_bytes) {
+  std::string out = "\"";
+  const std::size_t shown = std::min(length, max_bytes);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\%d", c);
+      out += escape;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  out += '"';
+  if (shown < length) out += "… (" + std::to_string(length) + " bytes)";
+  return out;
 }
 
 }  // namespace rigidlab::lua

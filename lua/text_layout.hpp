@@ -26,4 +26,10 @@ std::string fit_paragraphs(const std::string& text, const std::string& indent, s
 // `text` cut to at most `width` columns, ending in "…" when it was cut (at a code point).
 std::string truncate_to_width(const std::string& text, std::size_t width);
 
+// `length` bytes of `text` as a Lua string literal: in double quotes, with \" \\ \n \t and
+// \ddd for the other control bytes, so a trailing space or a newline is visible; UTF-8 passes
+// as it is. Past `max_bytes` the literal is cut and "… (N bytes)" follows it.
+std::string quoted(const char* text, std::size_t length,
+                   std::size_t max_bytes = static_cast<std::size_t>(-1));
+
 }  // namespace rigidlab::lua

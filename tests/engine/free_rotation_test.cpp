@@ -23,6 +23,7 @@
 
 #include "engine/inertia.hpp"
 #include "engine/world.hpp"
+#include "tests/engine/elliptic.hpp"
 
 namespace rigidlab {
 namespace {
@@ -226,16 +227,7 @@ TEST(Conserving, FirstOrderWithAStateDependentTorque) {
 
 // ---- the intermediate axis ------------------------------------------------------------------
 
-// Complete elliptic integral of the first kind K(k), by the arithmetic-geometric mean.
-double elliptic_k(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 40; ++i) {
-    const double next = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = next;
-  }
-  return pi / (2.0 * a);
-}
+using test::elliptic_k;
 
 // The interval between sign changes of the intermediate component of ω for moments
 // i1 < i2 < i3 and body-frame ω = (w1, w2, w3) along them: 2K(k)/p (Landau & Lifshitz §37).

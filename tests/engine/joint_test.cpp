@@ -12,6 +12,7 @@
 
 #include "engine/joint.hpp"
 #include "engine/world.hpp"
+#include "tests/engine/elliptic.hpp"
 
 namespace rigidlab {
 namespace {
@@ -19,16 +20,7 @@ namespace {
 const SolverKind both_solvers[] = {SolverKind::soft_step, SolverKind::sequential_impulses};
 std::string name(SolverKind s) { return solver_names[static_cast<int>(s)]; }
 
-// K(k) = π / (2 AGM(1, √(1 − k²))) (Abramowitz & Stegun 17.6).
-double elliptic_k(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 40; ++i) {
-    const double m = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = m;
-  }
-  return M_PI / (2.0 * a);
-}
+using test::elliptic_k;
 
 Joint& add_joint(World& w, const JointDef& def) {
   const Body& a = w.store().get(def.a);
