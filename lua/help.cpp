@@ -129,6 +129,38 @@ bool push_property_help(lua_State* L, const std::string& name) {
   return false;
 }
 
+// For a name that is no topic ("hinge", "gravity"): the dotted names of the topics' members
+// and fields with that name ("joint.hinge", "world.gravity"), sorted, for the error message.
+std::string suggestions(lua_State* L, const std::string& name) {
+  if (name.find_first_of(".:") != std::string::npos) return "";
+  std::vector<std::string> found;
+  luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
+  lua_getfield(L, -1, "rigidlab");
+  if (lua_type(L, -1) == LUA_TTABLE) {
+    lua_pushnil(L);
+    while (lua_next(L, -2) != 0) {
+      if (lua_type(L, -2) == LUA_TSTRING && lua_type(L, -1) == LUA_TTABLE) {
+        const std::string topic = lua_tostring(L, -2);
+        lua_pushlstring(L, name.data(), name.size());
+        const bool member = lua_rawget(L, -2) != LUA_TNIL;
+        lua_pop(L, 1);
+        bool field = false;
+        for (const Property* p : topic_properties(L, -1)) field = field || name == p->name;
+        if (member || field) found.push_back(topic + "." + name);
+      }
+      lua_pop(L, 1);
+    }
+  }
+  lua_pop(L, 2);
+  std::sort(found.begin(), found.end());
+  constexpr std::size_t shown = 4;
+  std::string text;
+  for (std::size_t i = 0; i < found.size() && i < shown; ++i)
+    text += (i == 0 ? "" : ", ") + ("'" + found[i] + "'");
+  if (found.size() > shown) text += ", ...";
+  return text.empty() ? text : "did you mean " + text + "? ";
+}
+
 const char* const overview =
     "rigidlab: rigid-body dynamics in Lua. help(x) documents a function, type or module,\n"
     "given the value or its name: help(vec3), help(\"inertia.solid_box\"), help(vec3.cross).\n"
@@ -162,7 +194,8 @@ int help(lua_State* L) {
       return 0;
     }
     if (lua_isnil(L, -1))
-      arg_error(L, 1, "no topic '%s' (help() lists the topics)", name.c_str());
+      arg_error(L, 1, "no topic '%s' (%shelp() lists the topics)", name.c_str(),
+                suggestions(L, name).c_str());
     lua_replace(L, 1);
   }
   if (lua_type(L, 1) == LUA_TUSERDATA) {

@@ -45,6 +45,19 @@ T.case("unknown topics", function()
     "a userdata of another library")
 end)
 
+T.case("an unknown plain name points to the members and fields of that name", function()
+  T.fails(function() help("hinge") end,
+    "bad argument #1 to 'help' (no topic 'hinge' (did you mean 'joint.hinge'? help() lists " ..
+    "the topics))", "a joint type")
+  T.fails(function() help("gravity") end, "did you mean 'articulation.gravity', 'world.gravity'?",
+    "a field of two types")
+  T.fails(function() help("solid_box") end, "did you mean 'inertia.solid_box'?", "a function")
+  for _, name in ipairs({"joint.hinge", "articulation.gravity", "world.gravity",
+                         "inertia.solid_box"}) do
+    assert(#captured(name) > 0, name .. " has help")  -- every suggestion is a working topic
+  end
+end)
+
 T.case("names with a NUL byte are refused, not truncated (issue 12 item 12)", function()
   T.fails(function() help("vec3\0junk") end,
     "bad argument #1 to 'help' (the topic name must not contain a NUL byte ('\\0' at byte 5 of " ..
