@@ -382,7 +382,9 @@ const Entry world_methods[] = {
      "1) of the time, the energies, the momenta, and of each body in `bodies` (default all)\n"
      "its position, orientation, velocity and angular velocity (world and body frame), kinetic\n"
      "energy and angular momentum about its COM. rec.t, rec:series(name [, body]),\n"
-     "rec:csv(path), rec:stop(); w:render{show = 'trail'} draws the newest recorder's paths."},
+     "rec:csv(path), rec:stop(); w:render{show = 'trail'} draws the newest recorder's paths.\n"
+     "If the world steps on from an earlier time (a view quit after a rewind), the samples\n"
+     "from then on are replaced by the new motion."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 const Entry articulation_methods[] = {

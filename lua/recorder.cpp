@@ -116,6 +116,16 @@ void Recording::stop(const std::string& reason) {
   stop_reason_ = reason;
 }
 
+void Recording::drop_samples_from(double time, std::vector<std::vector<double>*> arrays) {
+  if (times_.empty() || time > times_.back()) return;
+  const std::size_t samples = times_.size();
+  const std::size_t kept = static_cast<std::size_t>(
+      std::lower_bound(times_.begin(), times_.end(), time) - times_.begin());
+  for (std::vector<double>* a : arrays) a->resize(a->size() / samples * kept);
+  times_.resize(kept);
+  steps_ = 0;  // `every` steps from the state the world went back to
+}
+
 template <class Sample>
 void Recording::sample_or_stop(std::vector<std::vector<double>*> arrays, Sample&& sample) noexcept {
   std::vector<std::size_t> sizes;
@@ -180,6 +190,7 @@ void WorldRecorder::sample(const World& world) {
 }
 
 void WorldRecorder::after_step(const World& world) noexcept {
+  if (recording()) drop_samples_from(world.time(), {&world_, &bodies_});
   if (!due()) return;
   const BodyStore& store = *world.shared_store();
   for (std::size_t k = 0; k < ids_.size(); ++k)

@@ -57,6 +57,11 @@ class Recording {
   explicit Recording(long every) : every_(every < 1 ? 1 : every) {}
   // Counts a completed step; true when it is one to sample.
   bool due() { return recording_ && ++steps_ % every_ == 0; }
+  // A step that ends at or before the last sample's time (a live view quit after a rewind
+  // left the world at an earlier state, and it steps on from there): the samples from that
+  // time on are dropped, so the times stay increasing and the recording is the motion as it
+  // now went; sampling counts `every` steps from the state it went back to. `arrays` hold whole samples each.
+  void drop_samples_from(double time, std::vector<std::vector<double>*> arrays);
   // Runs `sample` keeping whole samples only: on std::bad_alloc the arrays are cut back to
   // their sizes before it and recording stops.
   template <class Sample>

@@ -4,8 +4,9 @@
 // overlays, quit. The frame rate is held by drawing fewer frames, never by slowing simulated
 // time; only when the steps alone take longer than real time does the status say so.
 // ← steps back through a ring of the world's saved states (World::save_state, restored
-// exactly), → and space step forward again from there: the same states, bit for bit, so the
-// same frames (lua/view_subject.hpp keeps the ring and the trails).
+// exactly), → and space go forward through it again by restoring the next saved state (the
+// same states bit for bit, so the same frames, and no callback or recorder runs twice); past
+// its newest state they step the world (lua/view_subject.hpp keeps the ring and the trails).
 // present/terminal restores the terminal however the view ends: q, Ctrl-C (an error raised
 // at the next stop check), an error in a force callback, a limit, os.exit.
 #include <unistd.h>
@@ -112,16 +113,16 @@ class View {
  private:
   static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-  // Steps through the object's own step method (force callbacks, controls, limits and Ctrl-C
-  // as in a script); the subject remembers the state.
+  // After a rewind, the next state of the history; past its end, a step through the object's
+  // own step method (force callbacks, controls, limits and Ctrl-C as in a script), and the
+  // subject remembers the state.
   void step() {
+    if (subject_->forward(L_, note_)) return;
     lua_getfield(L_, 1, "step");
     lua_pushvalue(L_, 1);
     lua_pushnumber(L_, request_.dt);
     lua_call(L_, 2, 0);
     subject_->stepped(L_);
-    const std::string note = subject_->take_note();
-    if (!note.empty()) note_ = note;
   }
 
   // Runs `simulated` more seconds of the world, but steps for at most half a frame of wall
@@ -278,7 +279,8 @@ const Entry methods[] = {
      "The world live in the terminal, at the terminal's size: it runs in real time (times\n"
      "speed, default 1) in steps of dt (default 1/60 s) until you press q. Keys: space pause,\n"
      "-> one step (and pause), <- one step back (the last 600 steps, fewer for a large world,\n"
-     "are kept and restored exactly: stepping forward again gives the same motion), + and -\n"
+     "are kept and restored exactly: stepping forward again restores the same states, without\n"
+     "calling force callbacks or recorders twice), + and -\n"
      "speed, shift+arrows (or a d w s, up and down) orbit the camera, o cycles the overlays\n"
      "(those in show, all, none). A status line shows t, the energy and |L|. The world stays\n"
      "where the view leaves it (after a rewind: at the state shown). Frames as w:render draws\n"

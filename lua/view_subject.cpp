@@ -21,20 +21,6 @@ std::size_t state_bytes(const World& world, const WorldState& state) {
          state.joint_impulses.size() * sizeof(double);
 }
 
-// Whether the world now is in `saved`'s motion state, bit for bit (== on doubles: a NaN never
-// is, but a world never holds one).
-bool same_motion(const World& world, const WorldState& saved) {
-  const std::vector<Body>& bodies = world.bodies();
-  if (world.time() != saved.time || bodies.size() != saved.bodies.size()) return false;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body &a = bodies[i], &b = saved.bodies[i];
-    if (a.position != b.position || a.orientation.coeffs() != b.orientation.coeffs() ||
-        a.velocity != b.velocity || a.angular_velocity != b.angular_velocity)
-      return false;
-  }
-  return true;
-}
-
 // Each body's COM over the states `first`..`last` of `history` (indices among those held).
 template <class PositionOf>
 std::vector<std::vector<Vec3>> paths(std::size_t first, std::size_t last, std::size_t bodies,
@@ -69,14 +55,6 @@ class WorldSubject final : public ViewSubject {
 
   void stepped(lua_State* L) override {
     World& w = world(L);
-    const WorldState* next = history_->next();
-    if (next != nullptr && same_motion(w, *next)) {
-      history_->forward();
-      return;
-    }
-    if (next != nullptr)
-      note_ = "this replay differs from the history (a force callback with a state of its own?): "
-              "the rest of it is dropped";
     protect(L, [&] {
       WorldState& saved = history_->record();
       w.save_state(saved);
@@ -95,23 +73,12 @@ class WorldSubject final : public ViewSubject {
       note = text;
       return false;
     }
-    World& w = world(L);
-    bool changed = false;
-    protect(L, [&] {
-      try {
-        w.restore_state(history_->current());
-      } catch (const std::invalid_argument&) {  // bodies added or removed since
-        changed = true;
-      }
-    });
-    if (!changed) return true;
-    history_->clear();
-    protect(L, [&] { w.save_state(history_->record()); });
-    note = "the world's bodies changed: the history starts again here";
-    return false;
+    return restore_current(L, note);
   }
 
-  std::string take_note() override { return std::exchange(note_, std::string()); }
+  bool forward(lua_State* L, std::string& note) override {
+    return history_->forward() && restore_current(L, note);
+  }
 
   present::Scene scene(lua_State* L, const SceneRequest& overlays, bool trails) override {
     const World& w = world(L);
@@ -143,8 +110,26 @@ class WorldSubject final : public ViewSubject {
  private:
   static World& world(lua_State* L) { return check_world(L, 1).world; }
 
+  // Puts the world in the history's current state. False, with `note`, when its bodies have
+  // changed since (a callback added or removed some): the history starts again from now.
+  bool restore_current(lua_State* L, std::string& note) {
+    World& w = world(L);
+    bool changed = false;
+    protect(L, [&] {
+      try {
+        w.restore_state(history_->current());
+      } catch (const std::invalid_argument&) {
+        changed = true;
+      }
+    });
+    if (!changed) return true;
+    history_->clear();
+    protect(L, [&] { w.save_state(history_->record()); });
+    note = "the world's bodies changed: the history starts again here";
+    return false;
+  }
+
   std::unique_ptr<present::History<WorldState>> history_;
-  std::string note_;
 };
 
 class ArticulationSubject final : public ViewSubject {

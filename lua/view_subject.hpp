@@ -23,11 +23,15 @@ class ViewSubject {
   virtual ~ViewSubject() = default;
   // After each step the view made: remembers the new state.
   virtual void stepped(lua_State* L) = 0;
-  // Goes back to the state before the current one, exactly (stepping forward again gives the
-  // same states bit for bit). False, with `note` saying why, when it cannot.
+  // Goes back to the state before the current one, exactly. False, with `note` saying why,
+  // when it cannot.
   virtual bool back(lua_State* L, std::string& note) = 0;
-  // A note about the last step (the replay after a rewind differed from the history), once.
-  virtual std::string take_note() { return {}; }
+  // After a rewind: goes forward to the next state of the history by restoring it (the same
+  // states bit for bit, and nothing runs twice: force callbacks and controls are not called
+  // again, and recorders attached to the object do not record the replayed steps a second
+  // time). False at the newest state: the view then steps the object itself. `note` says
+  // why when the history had to be dropped.
+  virtual bool forward(lua_State*, std::string&) { return false; }
   // The scene with `overlays` and, when `trails`, each body's recent path.
   virtual present::Scene scene(lua_State* L, const SceneRequest& overlays, bool trails) = 0;
   virtual ViewTotals totals(lua_State* L) = 0;
