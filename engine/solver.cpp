@@ -143,10 +143,15 @@ void Solver::build_rows_ahead(Constraint& joint, const Body& a, const Body* b,
 // (C(h) − C0)/h − C'(h), so that the positions, which move by h (v + v_push), reach C(h):
 // velocity and position of a lone spring follow the continuous solution to rounding, where
 // a first-order soft row (Box2D's implicit Euler) lags by a phase of O(ωh) per period.
-// A bounded motor that saturates gets no push: its positions follow its velocity.
+// A bounded motor is the same oscillator while its impulse stays inside ±max_force·h (it then
+// moves exactly as the unbounded one). One that saturates applies exactly ±max_force over the
+// substep: a constant acceleration a, for which x(h) = x0 + h C'0 + ½ h² a and C'(h) = C'0 + h a,
+// so its push is (x(h) − x0)/h − C'(h) = −½ (C'(h) − C'0) (push_joints decides which, from the
+// impulse the velocity sweeps left).
 void Solver::prepare_oscillator(Row& r, const JointRow& spec) const {
   r.soft = rigid_softness;
   r.push_target = 0.0;
+  r.start_rate = 0.0;
   r.pushes = false;
   r.bias = 0.0;
   if (!(r.row.mass > 0.0)) return;  // neither body can move along the row
@@ -172,7 +177,8 @@ void Solver::prepare_oscillator(Row& r, const JointRow& spec) const {
   if (!std::isfinite(end.x) || !std::isfinite(end.v)) return;
   r.bias = -end.v;
   r.push_target = (end.x - spec.error) / h_ - end.v;
-  r.pushes = spec.kind == JointRow::Kind::spring || spec.max_force == unbounded;
+  r.start_rate = v0;
+  r.pushes = true;
 }
 
 // ---- warm start, solve, relax ------------------------------------------------------------------
@@ -283,7 +289,11 @@ void Solver::push_joints(bool forward, bool feedback) {
     Softness soft = rigid_softness;
     if (r.kind == JointRow::Kind::spring || r.kind == JointRow::Kind::motor) {
       if (!r.pushes) continue;
-      bias = -r.push_target;
+      const bool saturated = r.kind == JointRow::Kind::motor &&
+                             (r.row.impulse == r.row.lower || r.row.impulse == r.row.upper);
+      // A saturated motor: −½ of the rate change its constant force made (above).
+      bias = saturated ? 0.5 * (row_velocity(r.row, bodies_[r.a], bodies_[r.b]) - r.start_rate)
+                       : -r.push_target;
     } else {
       const bool holds = r.kind == JointRow::Kind::equality ||
                          (r.kind == JointRow::Kind::limit && r.error <= 0.0);

@@ -131,6 +131,7 @@ class Solver {
     double bias;          // equality rows: R/h (curvature); springs and motors: −(the oscillator's
                           // end velocity)
     double push_target;   // springs and motors: the push velocity J v_push they reach
+    double start_rate;    // springs and motors: C' at the start of the substep
     bool pushes;          // springs and motors: whether the push applies
     std::uint32_t a, b;   // solver slots
     JointRow::Kind kind;
