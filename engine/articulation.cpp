@@ -90,6 +90,26 @@ void Articulation::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& v)
   if (model_.free_base()) q_.segment<4>(3).normalize();
 }
 
+void Articulation::save_state(ArticulationState& to) const {
+  to.q = q_;
+  to.v = v_;
+  to.tau = tau_;
+  to.time = time_;
+  to.links = model_.link_count();
+}
+
+void Articulation::restore_state(const ArticulationState& from) {
+  check_not_stepping("restore a state");
+  if (from.links != model_.link_count())
+    throw std::invalid_argument("the state is of an articulation with " +
+                                std::to_string(from.links) + " links, this one has " +
+                                std::to_string(model_.link_count()));
+  q_ = from.q;  // the same sizes as q_, v_, tau_: no allocation
+  v_ = from.v;
+  tau_ = from.tau;
+  time_ = from.time;
+}
+
 void Articulation::set_torques(const Eigen::VectorXd& tau) {
   check_not_stepping("set the torques");
   const std::string problem = vector_problem(tau, model_.nv(), "tau");

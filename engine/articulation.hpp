@@ -40,6 +40,15 @@ class ArticulationStepError : public std::runtime_error {
 
 class Articulation;
 
+// What a step reads and writes of an articulation, saved and put back exactly (the live view's
+// rewind): q, q̇, the held torques and the time, for a model of `links` links. The model,
+// gravity, the integrator and the controls are not part of it.
+struct ArticulationState {
+  Eigen::VectorXd q, v, tau;
+  double time = 0.0;
+  int links = 0;
+};
+
 // Something that watches an articulation's motion (a recorder): told after every completed
 // step, with the articulation in the state that step left. It may query it (kinematics,
 // energies) but neither change it nor throw.
@@ -76,6 +85,11 @@ class Articulation {
   // Throws std::invalid_argument (wrong length, not finite, a free base's quaternion not of
   // unit length within 1e-6, which is then normalised).
   void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& v);
+  // A copy of the state (allocates only when `to` is smaller than this model's), and back:
+  // restore_state throws std::invalid_argument (nothing changes) when the state is of a model
+  // with another number of links, or while stepping.
+  void save_state(ArticulationState& to) const;
+  void restore_state(const ArticulationState& from);
   // Held generalised forces (length nv), added at every evaluation until changed.
   const Eigen::VectorXd& torques() const { return tau_; }
   void set_torques(const Eigen::VectorXd& tau);

@@ -282,6 +282,7 @@ void ArticulationRecorder::sample(Articulation& art) {
 }
 
 void ArticulationRecorder::after_step(Articulation& art) noexcept {
+  if (recording()) drop_samples_from(art.time(), {&state_, &poses_});
   if (!due()) return;
   if (static_cast<std::size_t>(art.model().link_count()) != links_)
     return stop("a link was added at t = " + present::csv_number(art.time()) + " s");

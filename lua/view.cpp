@@ -291,8 +291,8 @@ const Entry articulation_methods[] = {
     {"view", articulation_view, "articulation:view",
      "art:view{show =, camera =, dt =, speed =, paused =, ascii =, color =}",
      "The articulation live in the terminal, as w:view shows a world (frames as art:render\n"
-     "draws them; show: 'frames', 'omega', 'joints', 'trail'). Same keys, except that <-\n"
-     "cannot step back yet: the engine keeps no saved articulation states."},
+     "draws them; show: 'frames', 'omega', 'joints', 'trail'). Same keys: <- steps back\n"
+     "through the last 600 states (q, qd, the held torques and the time, restored exactly)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 }  // namespace

@@ -40,11 +40,11 @@ class ViewSubject {
   virtual std::string position() const = 0;
 };
 
-// A ring of the world's recent states (World::save_state), preallocated, at most
-// history_bytes of them (fewer if the memory limit refuses them): from it the view steps back
-// and draws the trails. Raises Lua's memory error when not even a few states fit.
+// A ring of the world's (articulation's) recent states (World::save_state,
+// Articulation::save_state), preallocated, at most history_bytes of them (fewer if the memory
+// limit refuses them): from it the view steps back and forward and draws the trails. Raises
+// Lua's memory error when not even a few states fit.
 std::unique_ptr<ViewSubject> world_subject(lua_State* L);
-// An articulation: trails, no stepping back (the engine has no saved articulation states).
 std::unique_ptr<ViewSubject> articulation_subject(lua_State* L);
 
 constexpr std::size_t history_bytes = std::size_t{32} << 20;

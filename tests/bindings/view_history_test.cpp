@@ -31,6 +31,7 @@ int act(lua_State* L) {
   Drive& d = *static_cast<Drive*>(lua_touserdata(L, lua_upvalueindex(1)));
   const std::string action = luaL_checkstring(L, 2);
   if (action == "open") d.subject = rigidlab::lua::world_subject(L);
+  if (action == "open articulation") d.subject = rigidlab::lua::articulation_subject(L);
   if (action == "step") {
     if (!d.subject->forward(L, d.note)) {
       lua_step(L);
@@ -100,6 +101,33 @@ TEST_F(ViewHistory, SteppingOnFromARewoundStateDropsTheRecordedFuture) {
     assert(#t == #want, "samples at " .. table.concat(t, " "))
     for i, s in ipairs(want) do assert(math.abs(t[i] - s / 60) < 1e-12, "sample " .. i) end
     assert(y[#y].y > 0, "the last sample is of the new future")
+  )lua"), "");
+}
+
+TEST_F(ViewHistory, AnArticulationRewindsAndReplaysExactly) {
+  ASSERT_EQ(run(R"lua(
+    a = articulation{integrator = "rk4"}
+    local first = a:add_link{joint = "revolute", axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0)}
+    a:add_link{parent = first, joint = "revolute", axis = vec3(0, 0, 1),
+               origin = vec3(1, 0, 0), mass = 1, com = vec3(1, 0, 0)}
+    calls = 0
+    a:add_control(function() calls = calls + 1; return {0.5, 0} end)
+    rec = a:record{}
+    act(a, "open articulation")
+    local q = {}
+    for k = 1, 20 do act(a, "step"); q[k] = a.q end
+    local calls_at_20 = calls
+    for k = 1, 5 do assert(act(a, "back"), "back " .. k) end
+    assert(a.q[1] == q[15][1] and a.q[2] == q[15][2], "five back is the state of step 15")
+    assert(math.abs(a.time - 15 / 60) < 1e-12, "at t = " .. a.time)
+    for _ = 1, 5 do act(a, "step") end
+    assert(a.q[1] == q[20][1] and a.q[2] == q[20][2], "and forward again the state of step 20")
+    assert(calls == calls_at_20, "the control ran again for the replayed steps")
+    act(a, "step")
+    assert(calls == calls_at_20 + 4, "past the history: one rk4 step, four control calls")
+    local t = rec:series("t")
+    assert(#t == 22, #t .. " samples, not 22")
+    for i = 2, #t do assert(t[i] > t[i - 1], "times increase") end
   )lua"), "");
 }
 

@@ -162,7 +162,8 @@ wait_exit "q ends it: status 0" 0
 tmux -S "$socket" kill-server 2>/dev/null || true
 socket=$scratch/tmux-5.socket
 
-# An articulation: a pendulum swings in art:view; <- says why it cannot step back.
+# An articulation: a pendulum swings in art:view; <- <- goes back to the picture of two steps
+# before, and the status says so.
 cat >"$scratch/pendulum.lua" <<'LUA'
 local a = articulation{}
 a:add_link{joint = "revolute", axis = vec3(0, 0, 1), mass = 1, com = vec3(1, 0, 0)}
@@ -179,8 +180,17 @@ key Right
 sleep 0.3
 case_name="the pendulum moves"
 [[ $(settled | grep -v '^t ') != "$picture_a" ]] && pass || fail "the same picture after two steps"
+picture_b=$(settled | grep -v '^t ')
 key Left
-wait_for "<- on an articulation says it cannot step back yet" 'cannot step back: no saved articulation'
+key Left
+wait_for "<- <- on an articulation rewinds two steps" 'rewound 2 of '
+case_name="two steps back is the picture two steps before"
+[[ $(settled | grep -v '^t ') == "$picture_a" ]] && pass || fail "not the picture before the two steps"
+key Right
+key Right
+sleep 0.3
+case_name="-> -> restores the picture after them"
+[[ $(settled | grep -v '^t ') == "$picture_b" ]] && pass || fail "not the picture after the two steps"
 key q
 wait_exit "q ends the articulation's view" 0
 tmux -S "$socket" kill-server 2>/dev/null || true
