@@ -56,22 +56,34 @@ std::string contact_settings_problem(const ContactSettings& s) {
 
 // ---- warm starting -----------------------------------------------------------------------------
 
-// The previous step's point that p continues: the same bodies (or plane) and feature, or else
-// the nearest point of the same pair within match_distance (features of clipped faces change
-// when a corner of one box lies exactly on a side of the other). nullptr when p is new.
-const ContactInfo* ContactConstraints::previous_point(const Manifold& m, const Point& p) const {
+// The previous step's points of manifold m's pair (same bodies or plane): [first, last) of
+// contacts_, found once per manifold.
+std::pair<const ContactInfo*, const ContactInfo*> ContactConstraints::previous_points(
+    const Manifold& m) const {
   auto less = [](const ContactInfo& info, const auto& k) { return sort_key(info) < k; };
-  const auto key = sort_key(m.id_a, m.id_b, m.plane, p.feature);
-  const auto found = std::lower_bound(contacts_.begin(), contacts_.end(), key, less);
-  if (found != contacts_.end() && sort_key(*found) == key) return &*found;
+  const ContactInfo* first =
+      contacts_.data() + (std::lower_bound(contacts_.begin(), contacts_.end(),
+                                           sort_key(m.id_a, m.id_b, m.plane, 0), less) -
+                          contacts_.begin());
+  const ContactInfo* end = contacts_.data() + contacts_.size();
+  const ContactInfo* last = first;
+  while (last != end && last->a == m.id_a && last->b == m.id_b && last->plane == m.plane) ++last;
+  return {first, last};
+}
+
+// The previous step's point that p continues, among its pair's [first, last): the same
+// feature, or else the nearest point of the pair within match_distance (features of clipped
+// faces change when a corner of one box lies exactly on a side of the other). nullptr when p
+// is new.
+const ContactInfo* ContactConstraints::previous_point(const Point& p, const ContactInfo* first,
+                                                      const ContactInfo* last) const {
+  for (const ContactInfo* it = first; it != last; ++it)
+    if (it->feature == p.feature) return it;
   const ContactInfo* nearest = nullptr;
   double best = settings_->match_distance * settings_->match_distance;
-  for (auto it = std::lower_bound(contacts_.begin(), contacts_.end(),
-                                  sort_key(m.id_a, m.id_b, m.plane, 0), less);
-       it != contacts_.end() && it->a == m.id_a && it->b == m.id_b && it->plane == m.plane;
-       ++it) {
+  for (const ContactInfo* it = first; it != last; ++it) {
     const double d2 = (it->point - p.point).squaredNorm();
-    if (d2 <= best) best = d2, nearest = &*it;
+    if (d2 <= best) best = d2, nearest = it;
   }
   return nearest;
 }
@@ -91,9 +103,10 @@ void ContactConstraints::warm_start(SolverBody* solver) {
   for (Manifold& m : manifolds_) {
     SolverBody& a = solver[m.a];
     SolverBody& b = solver[m.b];
+    const auto [first, last] = previous_points(m);
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
-      const ContactInfo* found = previous_point(m, p);
+      const ContactInfo* found = previous_point(p, first, last);
       if (found == nullptr) continue;
       p.normal.impulse = scale * found->sweep_impulse;
       p.tangent1.impulse = scale * found->friction_impulse.dot(p.tangent1.jacobian.linear);
@@ -231,41 +244,52 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   SolverBody& b = solver_[m.b];
   for (std::uint32_t i = 0; i < m.count; ++i) {
     Point& p = points_[m.first + (forward ? i : m.count - 1 - i)];
+    const double limit = m.friction * p.normal.impulse;
+    // No normal load and no friction impulse: the disk is a point and nothing changes (side
+    // by side boxes of a pyramid, spheres grazing in a heap).
+    if (limit == 0.0 && p.tangent1.impulse == 0.0 && p.tangent2.impulse == 0.0) continue;
     double t1 = p.tangent1.impulse - p.tangent1.mass * row_velocity(p.tangent1, a, b);
     double t2 = p.tangent2.impulse - p.tangent2.mass * row_velocity(p.tangent2, a, b);
-    const double limit = m.friction * p.normal.impulse;
     // Squares first: std::hypot's care against overflow cost a fifth of a pyramid's step, so
-    // it is kept for the impulses whose squares overflow.
+    // it is kept for the impulses whose squares overflow; and a point that sticks (inside the
+    // disk, the usual case at rest) needs no square root at all.
     const double length_squared = t1 * t1 + t2 * t2;
-    const double length =
-        std::isfinite(length_squared) ? std::sqrt(length_squared) : std::hypot(t1, t2);
-    if (length > limit) {  // slipping: on the edge of the cone, against the slip
-      const double scale = length > 0.0 ? limit / length : 0.0;
-      t1 *= scale, t2 *= scale;
+    if (!(length_squared <= limit * limit) || !std::isfinite(length_squared)) {
+      const double length =
+          std::isfinite(length_squared) ? std::sqrt(length_squared) : std::hypot(t1, t2);
+      if (length > limit) {  // slipping: on the edge of the cone, against the slip
+        const double scale = length > 0.0 ? limit / length : 0.0;
+        t1 *= scale, t2 *= scale;
+      }
     }
-    apply_row(p.tangent1, a, b, t1 - p.tangent1.impulse);
-    apply_row(p.tangent2, a, b, t2 - p.tangent2.impulse);
+    // Both rows' changes applied at once (Δv = W Jᵀ Δλ of the pair).
+    const double d1 = t1 - p.tangent1.impulse, d2 = t2 - p.tangent2.impulse;
+    const Vec3 linear = d1 * p.tangent1.jacobian.linear + d2 * p.tangent2.jacobian.linear;
+    a.velocity -= a.inverse_mass * linear;
+    a.angular_velocity -= d1 * p.tangent1.weighted_a + d2 * p.tangent2.weighted_a;
+    b.velocity += b.inverse_mass * linear;
+    b.angular_velocity += d1 * p.tangent1.weighted_b + d2 * p.tangent2.weighted_b;
     p.tangent1.impulse = t1, p.tangent2.impulse = t2;
   }
 }
 
-// λ' = P λ − A r on the manifold's points (see the header), r = J v + bias, on the impulses
-// `which` names. Nothing happens and false is returned when some λ' leaves [0, cap]; the λ'
-// found is left in `result` for solve_subset to start from.
+// λ' = P λ − A r on the manifold's points (see the header), r = J v + bias (the caller's
+// `residual`, measured before the update), on the impulses `which` names. Nothing happens and
+// false is returned when some λ' leaves [0, cap]; the λ' found is left in `result` for
+// solve_subset to start from.
 bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse,
-                                     const Mat4& projector, const double* bias,
+                                     const Mat4& projector, const double* residual,
                                      const double* cap, Impulse which, Vec4* result) {
   Manifold& m = manifolds_[manifold];
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
   const int count = static_cast<int>(m.count);
-  Vec4 old = Vec4::Zero(), residual = Vec4::Zero();
+  Vec4 old = Vec4::Zero(), r = Vec4::Zero();
   for (int i = 0; i < count; ++i) {
-    Point& p = points_[m.first + i];
-    old[i] = impulse_of(p, which);
-    residual[i] = row_velocity(p.normal, a, b) + bias[i];
+    old[i] = impulse_of(points_[m.first + i], which);
+    r[i] = residual[i];
   }
-  const Vec4 next = projector * old - inverse * residual;
+  const Vec4 next = projector * old - inverse * r;
   if (result != nullptr) *result = next;
   for (int i = 0; i < count; ++i)
     if (!(next[i] >= 0.0) || (cap != nullptr && next[i] > cap[i])) return false;
@@ -277,6 +301,42 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse,
   return true;
 }
 
+namespace {
+
+// Solves the leading n x n system of `matrix` (the rest is the identity) for `right`; false
+// when its determinant is not above `threshold` in size (Eigen's computeInverseWithCheck
+// rule). Closed forms for n ≤ 2, the inverse of its size above: no 4 x 4 inverse for the one
+// or two points of a manifold left free.
+bool solve_leading(const Eigen::Matrix4d& matrix, int n, const Eigen::Vector4d& right,
+                   double threshold, Eigen::Vector4d& solved) {
+  solved.setZero();
+  if (n == 1) {
+    if (!(std::abs(matrix(0, 0)) > threshold)) return false;
+    solved[0] = right[0] / matrix(0, 0);
+    return true;
+  }
+  if (n == 2) {
+    const double det = matrix(0, 0) * matrix(1, 1) - matrix(0, 1) * matrix(1, 0);
+    if (!(std::abs(det) > threshold)) return false;
+    solved[0] = (matrix(1, 1) * right[0] - matrix(0, 1) * right[1]) / det;
+    solved[1] = (matrix(0, 0) * right[1] - matrix(1, 0) * right[0]) / det;
+    return true;
+  }
+  bool invertible = false;
+  if (n == 3) {
+    Eigen::Matrix3d inverse;
+    matrix.topLeftCorner<3, 3>().computeInverseWithCheck(inverse, invertible, threshold);
+    if (invertible) solved.head<3>() = inverse * right.head<3>();
+    return invertible;
+  }
+  Eigen::Matrix4d inverse;
+  matrix.computeInverseWithCheck(inverse, invertible, threshold);
+  if (invertible) solved = inverse * right;
+  return invertible;
+}
+
+}  // namespace
+
 // The active normal rows of a manifold solved together (see the header), each λ' within
 // [0, cap]: (K_s + Γ_s) λ'_s = K λ − r − K λ'_held over the rows not held at a bound, the
 // rows' K entries from the block, Γ_ii = gamma[i], r = J v + bias. A row whose λ' leaves its
@@ -286,7 +346,7 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse,
 // nothing applied, when the free rows' matrix is singular or the bounds are not settled in
 // as many passes as rows.
 bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
-                                      const double* bias, const double* gamma,
+                                      const double* residual_in, const double* gamma,
                                       const double* cap, Impulse which, const Vec4* first) {
   Manifold& m = manifolds_[manifold];
   SolverBody& a = solver_[m.a];
@@ -297,9 +357,8 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
   bool held[max_manifold_points] = {false, false, false, false};
   for (int i = 0; i < count; ++i) {
     if (!active[i]) continue;
-    Point& p = points_[m.first + i];
-    old[i] = impulse_of(p, which);
-    residual[i] = row_velocity(p.normal, a, b) + bias[i];
+    old[i] = impulse_of(points_[m.first + i], which);
+    residual[i] = residual_in[i];
   }
   auto upper = [&](int i) { return cap != nullptr ? cap[i] : unbounded; };
   for (int pass = 0; pass <= count; ++pass) {
@@ -318,11 +377,9 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
         matrix(r, r) += gamma[i];
       }
       if (n > 0) {
-        Eigen::Matrix4d inverse;
-        bool invertible = false;
-        matrix.computeInverseWithCheck(inverse, invertible, 1e-12 * matrix.diagonal().maxCoeff());
-        if (!invertible) return false;
-        const Eigen::Vector4d solved = inverse * right;
+        Eigen::Vector4d solved;
+        if (!solve_leading(matrix, n, right, 1e-12 * matrix.diagonal().maxCoeff(), solved))
+          return false;
         for (int r = 0; r < n; ++r) next[index[r]] = solved[r];
       }
     } else {
@@ -350,44 +407,51 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
 // The normal rows of one manifold in `mode` (see the header): as the prepared block when all
 // its points take part, as a smaller block when some do, point by point when a block cannot
 // settle. Returns the largest velocity error before the update.
+// Rows that carry no impulse and do not approach (r = J v + bias ≥ 0 on every active row, all
+// λ = 0) are already solved: λ' = 0 meets every form's conditions (w = r ≥ 0, λ' = 0), so the
+// manifold is left alone (a pyramid's boxes touching side by side, a heap's grazing spheres).
 double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) {
   Manifold& m = manifolds_[manifold];
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
   const Impulse which = mode == NormalMode::push ? Impulse::push : Impulse::sweep;
-  double bias[max_manifold_points], block_bias[max_manifold_points];
+  double bias[max_manifold_points], residual[max_manifold_points];
   double gamma[max_manifold_points], cap[max_manifold_points];
   Softness soft[max_manifold_points];
   bool active[max_manifold_points];
-  bool all_active = true;
+  bool all_active = true, solved = true;
   double largest = 0.0;
   for (std::uint32_t i = 0; i < m.count; ++i) {
     Point& p = points_[m.first + i];
     active[i] = normal_bias(m, p, mode, bias[i], soft[i]);
     cap[i] = mode == NormalMode::relax ? p.relax_cap : unbounded;
-    // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
-    // for all the points of a manifold: they share their softness).
-    block_bias[i] = bias[i] / soft[i].mass_scale;
     gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
     if (!active[i]) {
       all_active = false;
+      residual[i] = 0.0;
       continue;
     }
-    const double error = row_velocity(p.normal, a, b) + bias[i];
-    largest = std::max(largest, impulse_of(p, which) > 0.0 ? std::abs(error)
-                                                           : -std::min(error, 0.0));
+    const double velocity = row_velocity(p.normal, a, b);
+    const double impulse = impulse_of(p, which);
+    const double error = velocity + bias[i];
+    largest = std::max(largest, impulse > 0.0 ? std::abs(error) : -std::min(error, 0.0));
+    // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
+    // for all the points of a manifold: they share their softness).
+    residual[i] = velocity + bias[i] / soft[i].mass_scale;
+    solved = solved && impulse == 0.0 && residual[i] >= 0.0;
   }
+  if (solved) return largest;
   if (m.block) {
     const Block& block = blocks_[manifold];
     const bool push = mode == NormalMode::push;
     Vec4 start;
     if (all_active) {
       if (solve_block(manifold, push ? block.soft_inverse : block.rigid_inverse,
-                      push ? block.soft_projector : block.rigid_projector, block_bias,
+                      push ? block.soft_projector : block.rigid_projector, residual,
                       mode == NormalMode::relax ? cap : nullptr, which, &start) ||
-          solve_subset(manifold, active, block_bias, gamma, cap, which, &start))
+          solve_subset(manifold, active, residual, gamma, cap, which, &start))
         return largest;
-    } else if (solve_subset(manifold, active, block_bias, gamma, cap, which, nullptr)) {
+    } else if (solve_subset(manifold, active, residual, gamma, cap, which, nullptr)) {
       return largest;
     }
   }
@@ -403,15 +467,20 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   return largest;
 }
 
-double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forward) {
-  solver_ = solver;
+double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forward,
+                                 SolverBody* push) {
   const std::size_t n = manifolds_.size();
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t m = forward ? k : n - 1 - k;
+    solver_ = solver;
     if (mode != NormalMode::push) solve_friction(manifolds_[m], forward);
     largest = std::max(largest, solve_normals(m, mode));
+    if (push == nullptr) continue;
+    solver_ = push;
+    solve_normals(m, NormalMode::push);
   }
+  solver_ = solver;
   return largest;
 }
 
@@ -505,9 +574,21 @@ void ContactConstraints::prepare_block(std::size_t manifold) {
 
 // ---- bookkeeping -----------------------------------------------------------------------------
 
+// The points go out in the order of contacts() (sort_key): the manifolds sorted by their
+// pair (one manifold per pair), each one's points by feature, instead of sorting every point.
 void ContactConstraints::store(double h) {
   next_contacts_.clear();
-  for (const Manifold& m : manifolds_)
+  order_.resize(manifolds_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<std::uint32_t>(i);
+  auto key = [this](std::uint32_t i) {
+    const Manifold& m = manifolds_[i];
+    return sort_key(m.id_a, m.id_b, m.plane, 0);
+  };
+  std::sort(order_.begin(), order_.end(),
+            [&key](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
+  for (std::uint32_t index : order_) {
+    const Manifold& m = manifolds_[index];
+    const std::size_t first = next_contacts_.size();
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       const Point& p = points_[k];
       ContactInfo info;
@@ -525,8 +606,9 @@ void ContactConstraints::store(double h) {
       info.friction = m.friction;
       next_contacts_.push_back(info);
     }
-  std::sort(next_contacts_.begin(), next_contacts_.end(),
-            [](const ContactInfo& x, const ContactInfo& y) { return sort_key(x) < sort_key(y); });
+    std::sort(next_contacts_.begin() + static_cast<std::ptrdiff_t>(first), next_contacts_.end(),
+              [](const ContactInfo& x, const ContactInfo& y) { return x.feature < y.feature; });
+  }
   contacts_.swap(next_contacts_);
   last_dt_ = h;
 }

@@ -101,6 +101,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "engine/body.hpp"
@@ -163,8 +164,11 @@ class ContactConstraints {
   // After the solver bodies recorded how far they moved: each point's gap now, and the lever
   // arms moved to one point again for the relax and restitution impulses (see below).
   void positions_moved(SolverBody* solver);
-  // One sweep over all manifolds; returns the largest normal velocity error seen.
-  double sweep(SolverBody* solver, NormalMode mode, bool forward);
+  // One sweep over all manifolds; returns the largest normal velocity error seen. With `push`,
+  // each manifold's push rows (NormalMode::push on those velocities) are solved right after
+  // its `mode` rows: the two sets of velocities are apart, so this is the same as a sweep of
+  // `mode` followed by a push sweep, with one pass over the contacts' memory instead of two.
+  double sweep(SolverBody* solver, NormalMode mode, bool forward, SolverBody* push = nullptr);
   void restitution(SolverBody* solver, const Acceleration* acceleration, StepPoll* poll);
   // sequential_impulses' position sweeps at the bodies' present poses; returns the index of
   // the first body in a contact whose state is not finite, or all_finite.
@@ -243,13 +247,15 @@ class ContactConstraints {
                     const Pose& pose_a, const Pose& pose_b);
   void central_sphere_point(Manifold& m, Point& p, const Vec3& centre_a,
                             const Vec3& centre_b) const;
-  double touch_tolerance() const;
+  double touch_tolerance() const { return touch_tolerance_; }
   // The largest gap at which a point counts as touching after the positions moved: a point the
   // sweeps brought to the surface lands there up to rounding.
-  double landed_tolerance() const { return 1e-3 * touch_tolerance(); }
+  double landed_tolerance() const { return 1e-3 * touch_tolerance_; }
 
   // contact_constraints.cpp
-  const ContactInfo* previous_point(const Manifold& m, const Point& p) const;
+  std::pair<const ContactInfo*, const ContactInfo*> previous_points(const Manifold& m) const;
+  const ContactInfo* previous_point(const Point& p, const ContactInfo* first,
+                                    const ContactInfo* last) const;
   void prepare_block(std::size_t manifold);
   double current_separation(const Manifold& m, const Point& p) const;
   void turn_to_centres(Manifold& m, const Vec3& apart);
@@ -261,8 +267,8 @@ class ContactConstraints {
   enum class Impulse { sweep, round, push };
   static double& impulse_of(Point& p, Impulse which);
   bool solve_block(std::size_t manifold, const Mat4& inverse, const Mat4& projector,
-                   const double* bias, const double* cap, Impulse which, Vec4* result);
-  bool solve_subset(std::size_t manifold, const bool* active, const double* bias,
+                   const double* residual, const double* cap, Impulse which, Vec4* result);
+  bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
                     const double* gamma, const double* cap, Impulse which, const Vec4* first);
 
   // contact_restitution.cpp
@@ -282,6 +288,7 @@ class ContactConstraints {
   // The step being solved.
   const ContactSettings* settings_ = nullptr;
   double h_ = 0.0;
+  double touch_tolerance_ = 1e-6;  // of settings_ (contact_finder.cpp find), read per point
   std::size_t ground_ = 0;
   SolverBody* solver_ = nullptr;  // during a stage
   const SolverBody* found_with_ = nullptr;
@@ -299,6 +306,7 @@ class ContactConstraints {
   // The last step's points, sorted (warm starting), and the one being built.
   std::vector<ContactInfo> contacts_;
   std::vector<ContactInfo> next_contacts_;
+  std::vector<std::uint32_t> order_;  // store's order of the manifolds
   double last_dt_ = 0.0;
 };
 

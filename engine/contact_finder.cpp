@@ -39,6 +39,9 @@ void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector
                               double h) {
   settings_ = &settings;
   h_ = h;
+  // The largest gap at which a point counts as touching (m): a point that landed at the end of
+  // the last step sits at gap 0 up to rounding, and conservative advancement stops this close.
+  touch_tolerance_ = std::max(0.1 * settings.linear_slop, 1e-6);
   ground_ = bodies.size();
   found_with_ = solver;
   acceleration_ = acceleration;
@@ -73,12 +76,6 @@ void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector
   }
   blocks_.resize(manifolds_.size());
   for (std::size_t m = 0; m < manifolds_.size(); ++m) prepare_block(m);
-}
-
-// The largest gap at which a point counts as touching (m): a point that landed at the end of
-// the last step sits at gap 0 up to rounding, and conservative advancement stops this close.
-double ContactConstraints::touch_tolerance() const {
-  return std::max(0.1 * settings_->linear_slop, 1e-6);
 }
 
 // Which contact a pair gets (see the header, "Speculative contacts"): the manifold at the start

@@ -131,23 +131,23 @@ double ContactConstraints::round_sweep(bool forward) {
     SolverBody& b = solver_[m.b];
     bool all = true, any = false;
     bool member[max_manifold_points];
-    double bias[max_manifold_points], before[max_manifold_points];
+    double residual[max_manifold_points], before[max_manifold_points];
     const double gamma[max_manifold_points] = {0.0, 0.0, 0.0, 0.0};
     for (std::uint32_t i = 0; i < m.count; ++i) {
       const Point& p = points_[m.first + i];
       member[i] = in_round(p.flags);
       all = all && member[i], any = any || member[i];
-      bias[i] = -p.target;
+      residual[i] = member[i] ? row_velocity(p.normal, a, b) - p.target : 0.0;
       before[i] = p.round_impulse;
     }
     if (!any) continue;
     Vec4 start;
     const bool block =
         m.block && (all ? solve_block(mi, blocks_[mi].rigid_inverse, blocks_[mi].rigid_projector,
-                                      bias, nullptr, Impulse::round, &start) ||
-                              solve_subset(mi, member, bias, gamma, nullptr, Impulse::round,
+                                      residual, nullptr, Impulse::round, &start) ||
+                              solve_subset(mi, member, residual, gamma, nullptr, Impulse::round,
                                            &start)
-                        : solve_subset(mi, member, bias, gamma, nullptr, Impulse::round,
+                        : solve_subset(mi, member, residual, gamma, nullptr, Impulse::round,
                                        nullptr));
     if (!block) {
       for (std::uint32_t i = 0; i < m.count; ++i) {

@@ -319,10 +319,13 @@ void Solver::solve() {
     if (poll != nullptr) poll->tick(contacts_.point_count() + rows_.size());
     const bool forward = sweep % 2 == 0;
     const double joints = sweep_joints(forward);
-    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward);
-    report_.push_back(std::max(joints, contacts));
+    // The joints' push rows before the contacts' (the order of two sweeps), the contacts'
+    // velocity and push rows in one pass (ContactConstraints::sweep): the joints' push rows
+    // touch only the push velocities, the contacts' velocity rows only the body velocities.
     push_joints(forward, soft);
-    if (soft) contacts_.sweep(pushes_.data(), NormalMode::push, forward);
+    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward,
+                                            soft ? pushes_.data() : nullptr);
+    report_.push_back(std::max(joints, contacts));
   }
 }
 
