@@ -15,6 +15,12 @@ namespace {
 // missed, and the narrow phase decides.
 constexpr double max_coordinate = 1e100;
 
+Aabb clamped(const Vec3& centre, const Vec3& extent) {
+  const Vec3 limit = Vec3::Constant(max_coordinate);
+  return {(centre - extent).cwiseMax(-limit).cwiseMin(limit),
+          (centre + extent).cwiseMax(-limit).cwiseMin(limit)};
+}
+
 // The shape's bounding box at the body's pose (a box's: the centre ± |R| h, Ericson,
 // "Real-Time Collision Detection" 4.2.6), grown by `grow` on every side.
 Aabb tight_box(const Body& b, double grow) {
@@ -30,9 +36,7 @@ Aabb tight_box(const Body& b, double grow) {
       break;
   }
   extent.array() += grow;
-  const Vec3 limit = Vec3::Constant(max_coordinate);
-  return {(b.position - extent).cwiseMax(-limit).cwiseMin(limit),
-          (b.position + extent).cwiseMax(-limit).cwiseMin(limit)};
+  return clamped(b.position, extent);
 }
 
 }  // namespace
@@ -40,21 +44,38 @@ Aabb tight_box(const Body& b, double grow) {
 void ContactPairs::update(const std::vector<Body>& bodies, const std::vector<BodyId>& ids,
                           const SolverBody* solver, double h, double speculative_distance) {
   ++update_count_;
-  radius_.assign(bodies.size(), 0.0);
-  sweep_.assign(bodies.size(), 0.0);
+  reach_.resize(bodies.size());
+  const BroadPhaseSettings& settings = broad_phase_.settings();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
-    if (b.shape.kind == ShapeKind::none) continue;
-    radius_[i] = bounding_radius(b.shape);
-    const double speed = solver[i].velocity.norm() + solver[i].angular_velocity.norm() * radius_[i];
+    Reach& r = reach_[i];
+    if (b.shape.kind == ShapeKind::none) {
+      r = Reach{};
+      continue;
+    }
+    r.radius = bounding_radius(b.shape);
+    const double spin = solver[i].angular_velocity.norm() * r.radius;
     // Capped so that absurd speeds (1e300 m/s) cannot make the boxes overflow to infinity.
-    sweep_[i] = std::min(speed * h, contact_detail::max_sweep);
+    r.sweep = std::min((solver[i].velocity.norm() + spin) * h, contact_detail::max_sweep);
+    const double turn = spin * h;  // m, how far its points move by turning in the step
     Vec3 displacement = h * solver[i].velocity;
     if (!displacement.allFinite() || displacement.norm() > contact_detail::max_sweep)
       displacement.setZero();
     const ProxyKind kind = is_static(b) ? ProxyKind::fixed : ProxyKind::moving;
-    sync_body(i, ids[i], tight_box(b, sweep_[i] + 0.5 * speculative_distance), displacement,
-              kind);
+    const double grow = r.sweep + 0.5 * speculative_distance;
+    // A box turning fast enough to carry its rotated box out of the fat box's margin within
+    // turning_steps steps gets the box of its bounding sphere instead, which its turning does
+    // not change (it holds the rotated box: each |R| h component is at most |h|). On and off
+    // at a factor 2 apart, so a body near the limit does not switch (and move) step by step.
+    SlotProxy& slot = slot_of(ids[i]);
+    const double margin =
+        std::min(settings.margin, settings.margin_fraction * 2.0 * r.radius);
+    if (b.shape.kind != ShapeKind::box) slot.turning = false;
+    else if (turning_steps * turn > margin) slot.turning = true;
+    else if (2.0 * turning_steps * turn < margin) slot.turning = false;
+    const Aabb box = slot.turning ? clamped(b.position, Vec3::Constant(r.radius + grow))
+                                  : tight_box(b, grow);
+    sync_body(slot, i, ids[i], box, displacement, kind);
   }
   drop_unseen();
   broad_phase_.update_pairs();
@@ -66,12 +87,18 @@ void ContactPairs::update(const std::vector<Body>& bodies, const std::vector<Bod
   }
 }
 
-// The body's proxy: moved when it has one of the same generation and kind, else (a new body,
-// or a slot reused by another) made anew.
-void ContactPairs::sync_body(std::size_t i, BodyId id, const Aabb& box, const Vec3& displacement,
-                             ProxyKind kind) {
+ContactPairs::SlotProxy& ContactPairs::slot_of(BodyId id) {
   if (id.slot >= slots_.size()) slots_.resize(id.slot + 1);
   SlotProxy& s = slots_[id.slot];
+  // A slot reused by another body starts afresh.
+  if (s.generation != id.generation) s.turning = false;
+  return s;
+}
+
+// The body's proxy: moved when it has one of the same generation and kind, else (a new body,
+// or a slot reused by another) made anew.
+void ContactPairs::sync_body(SlotProxy& s, std::size_t i, BodyId id, const Aabb& box,
+                             const Vec3& displacement, ProxyKind kind) {
   if (s.proxy != null_proxy && (s.generation != id.generation || s.kind != kind)) {
     broad_phase_.destroy_proxy(s.proxy);
     s.proxy = null_proxy;

@@ -14,6 +14,13 @@
 //   half the speculative distance. Two bodies whose points can come within the speculative
 //   distance in the step have overlapping tight boxes, so every pair the narrow phase would find
 //   is reported (the pair set is a superset: the narrow phase decides).
+// - A box that turns fast (its turning alone would carry its rotated box out of the fat box's
+//   margin within 4 steps) is bounded instead by its sphere: the centre ± (R + sweep + half the
+//   speculative distance), which holds the rotated box and which turning does not change. A
+//   spinning box then keeps its fat box until it has moved, where its rotated box would leave
+//   the fat box every few steps and be re-inserted into the tree (at 100k scattered boxes that
+//   re-insertion, cache misses on the tree's nodes, was the largest cost that grew with n).
+//   The pairs found by the narrow phase are the same (the boxes only grow), so is the order.
 // - Static bodies (inverse mass 0, also those moved by hand) are fixed proxies: they pair only
 //   with moving bodies, never with each other.
 // - A body that left the world (or lost its shape, or changed between static and moving) loses
@@ -47,8 +54,8 @@ class ContactPairs {
   const std::vector<BodyPair>& pairs() const { return pairs_; }
   // Of body i in the last update (0 for a body without a shape): its bounding radius and how
   // far its points can move in the step (m).
-  double radius(std::size_t i) const { return radius_[i]; }
-  double sweep(std::size_t i) const { return sweep_[i]; }
+  double radius(std::size_t i) const { return reach_[i].radius; }
+  double sweep(std::size_t i) const { return reach_[i].sweep; }
   const BroadPhase& broad_phase() const { return broad_phase_; }
 
   // The key of a body's proxy: its slot, then its generation.
@@ -63,14 +70,21 @@ class ContactPairs {
     std::uint32_t index = 0;  // of the body in the last update
     std::uint64_t seen = 0;   // the last update that saw it
     ProxyKind kind = ProxyKind::moving;
+    bool turning = false;     // its box is its bounding sphere's (see update)
   };
-  void sync_body(std::size_t i, BodyId id, const Aabb& box, const Vec3& displacement,
-                 ProxyKind kind);
+  struct Reach {
+    double radius = 0.0, sweep = 0.0;
+  };
+  // How many steps a box's turning must keep its rotated box inside the fat box's margin.
+  static constexpr double turning_steps = 4.0;
+  SlotProxy& slot_of(BodyId id);
+  void sync_body(SlotProxy& s, std::size_t i, BodyId id, const Aabb& box,
+                 const Vec3& displacement, ProxyKind kind);
   void drop_unseen();
 
   BroadPhase broad_phase_;
   std::vector<SlotProxy> slots_;  // by BodyId slot
-  std::vector<double> radius_, sweep_;  // by body index
+  std::vector<Reach> reach_;  // by body index
   std::vector<BodyPair> pairs_;
   std::uint64_t update_count_ = 0;
 };

@@ -152,5 +152,49 @@ TEST(ContactPairs, BoxesAreBoundedByTheirRotatedExtents) {
   EXPECT_EQ(candidates(Vec3(0.95, 0, 0)), 0u);
 }
 
+// Document: a 1.5 x 0.5 x 0.5 box turning at 5 rad/s changes its rotated box by up to
+// |ω| R h = 0.069 m a step (R = |half extents| = 0.829 m), so with the 0.1 m margin it would
+// leave its fat box every few steps and be re-inserted into the tree; bounded by its sphere,
+// centre ± (R + sweep + speculative/2), its box stays the same while it only turns, and its fat
+// box is never renewed. A box turning slowly (0.2 rad/s) keeps its tighter rotated box.
+TEST(ContactPairs, AFastTurningBoxKeepsItsFatBoxWhileItOnlyTurns) {
+  auto run = [](double spin, int* renewals) {
+    BodyStore store;
+    Body box = make_box_body(1.0, Vec3(1.5, 0.5, 0.5));
+    box.position = Vec3(1, 2, 3);
+    box.angular_velocity = spin * Vec3(1, 2, 3).normalized();
+    store.insert(box);
+    std::vector<SolverBody> solver(2);
+    solver[0].angular_velocity = box.angular_velocity;
+    ContactPairs pairs;
+    const double radius = Vec3(0.75, 0.25, 0.25).norm();
+    const double sweep = spin * radius * h;
+    *renewals = 0;
+    Aabb fat;
+    for (int step = 0; step < 120; ++step) {
+      Body& b = store.bodies()[0];
+      pairs.update(store.bodies(), store.ids(), solver.data(), h, speculative);
+      EXPECT_NEAR(pairs.sweep(0), sweep, 1e-15);
+      const Aabb& tight = pairs.broad_phase().box(0);
+      const Vec3 extent = b.orientation.toRotationMatrix().cwiseAbs() * Vec3(0.75, 0.25, 0.25);
+      // The turning box's half width on every axis, or the rotated box's, both grown alike.
+      const Vec3 half = spin > 1.0 ? Vec3::Constant(radius) : extent;
+      EXPECT_TRUE(tight.lower.isApprox(b.position - half - Vec3::Constant(sweep + speculative / 2),
+                                       1e-12));
+      EXPECT_TRUE(tight.upper.isApprox(b.position + half + Vec3::Constant(sweep + speculative / 2),
+                                       1e-12));
+      const Aabb& now = pairs.broad_phase().fat_box(0);
+      if (step > 0 && (now.lower != fat.lower || now.upper != fat.upper)) ++*renewals;
+      fat = now;
+      b.orientation = Quat(Eigen::AngleAxisd(h * spin, b.angular_velocity.normalized()) *
+                           b.orientation).normalized();
+    }
+  };
+  int renewals = 0;
+  run(5.0, &renewals);
+  EXPECT_EQ(renewals, 0);
+  run(0.2, &renewals);  // the rotated box, checked step by step above
+}
+
 }  // namespace
 }  // namespace rigidlab
