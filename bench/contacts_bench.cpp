@@ -9,6 +9,9 @@
 //                 five planes whose floor grows with N (256, 1,024, 4,096), timed from 0.5 s on
 //                 while they settle: ms per step and contacts per body (goal: per body-step
 //                 flat after accounting for the contacts per body);
+//   bouncy/N      the same heap with restitution e = 0.5 (spheres and bin): impacts above the
+//                 1 m/s threshold bounce, and the restitution stage solves them to convergence
+//                 (goal: no more than a few times settle/N);
 //   pyramid/S     210 unit boxes (base 20), solver S, timed after 10 s standing; the top box's
 //                 displacement after those 10 s is reported too (goal: ≤ 1.0 ms per step,
 //                 < 5 mm);
@@ -74,16 +77,17 @@ void scattered(benchmark::State& state) { run_scattered(state, true); }
 
 // ---- spheres settling in a bin ------------------------------------------------------------------
 
-void settle(benchmark::State& state) {
+void run_settle(benchmark::State& state, double restitution) {
   const int n = static_cast<int>(state.range(0));
   const int side = static_cast<int>(std::lround(std::sqrt(n / 4.0)));  // 4 layers
   World w;
   const double width = 0.25 * side;
-  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, 0.0, 0.5));
-  w.add_plane(make_plane(Vec3(1, 0, 0), 0.0, 0.0, 0.5));
-  w.add_plane(make_plane(Vec3(-1, 0, 0), -width, 0.0, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, 1), 0.0, 0.0, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, -1), -width, 0.0, 0.5));
+  const double e = restitution;
+  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, e, 0.5));
+  w.add_plane(make_plane(Vec3(1, 0, 0), 0.0, e, 0.5));
+  w.add_plane(make_plane(Vec3(-1, 0, 0), -width, e, 0.5));
+  w.add_plane(make_plane(Vec3(0, 0, 1), 0.0, e, 0.5));
+  w.add_plane(make_plane(Vec3(0, 0, -1), -width, e, 0.5));
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < n; ++i) {
@@ -92,6 +96,7 @@ void settle(benchmark::State& state) {
                       0.125 + 0.25 * ((i / side) % side)) +
                  0.02 * Vec3(u(rng), u(rng), u(rng));
     b.friction = 0.5;
+    b.restitution = e;
     w.add(b);
   }
   w.step(dt, 30);  // half a second: they have landed on each other and are settling
@@ -102,6 +107,8 @@ void settle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * n);
   set_counters(state, 0.0, static_cast<double>(w.contacts().size()) / n);
 }
+void settle(benchmark::State& state) { run_settle(state, 0.0); }
+void bouncy(benchmark::State& state) { run_settle(state, 0.5); }
 
 // ---- stacks: pyramid, column, stack ---------------------------------------------------------------
 
@@ -130,6 +137,7 @@ void stack(benchmark::State& state) { run_stack(state, 5, false); }
 BENCHMARK(free_boxes)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK(scattered)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK(settle)->Arg(256)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond);
+BENCHMARK(bouncy)->Arg(1024)->Unit(benchmark::kMillisecond);
 BENCHMARK(pyramid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(column)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(column20)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);

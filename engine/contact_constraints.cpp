@@ -584,8 +584,18 @@ void ContactConstraints::store(double h) {
     const Manifold& m = manifolds_[i];
     return sort_key(m.id_a, m.id_b, m.plane, 0);
   };
-  std::sort(order_.begin(), order_.end(),
-            [&key](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
+  // find() makes the plane manifolds first, body by body, then the pairs in the order of
+  // their ids: two sorted runs, merged in one pass (sorted when they are not).
+  auto less = [&key](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); };
+  const auto middle = std::find_if(order_.begin(), order_.end(),
+                                   [this](std::uint32_t i) { return manifolds_[i].plane == no_plane; });
+  if (std::is_sorted(order_.begin(), middle, less) && std::is_sorted(middle, order_.end(), less)) {
+    merged_.resize(order_.size());
+    std::merge(order_.begin(), middle, middle, order_.end(), merged_.begin(), less);
+    order_.swap(merged_);
+  } else {
+    std::sort(order_.begin(), order_.end(), less);
+  }
   for (std::uint32_t index : order_) {
     const Manifold& m = manifolds_[index];
     const std::size_t first = next_contacts_.size();

@@ -72,7 +72,9 @@
 //   push (the next ball of a row) then has its own impact, with the velocity it has after that
 //   event, in the next round. So a row of touching-but-apart balls passes the striker's speed
 //   to the far ball, and a pair of elastic balls keeps its kinetic energy exactly (each round
-//   reflects its normal velocities).
+//   reflects its normal velocities). A round with a bounce sweeps until it converges, within a
+//   budget of manifold solves (contact_restitution.cpp round_work): a round spanning a heap
+//   gets the velocity stage's `iterations` sweeps, as a round of landings does.
 // - Lever arms after the positions moved: an impulse pair at one point conserves angular
 //   momentum, but the relax and restitution impulses act after the bodies moved by Δx_a, Δx_b,
 //   and with the arms of the start, x_a + r_a and x_b + r_b are then two points h (u_b − u_a)
@@ -306,7 +308,7 @@ class ContactConstraints {
   // The last step's points, sorted (warm starting), and the one being built.
   std::vector<ContactInfo> contacts_;
   std::vector<ContactInfo> next_contacts_;
-  std::vector<std::uint32_t> order_;  // store's order of the manifolds
+  std::vector<std::uint32_t> order_, merged_;  // store's order of the manifolds
   double last_dt_ = 0.0;
 };
 

@@ -8,7 +8,7 @@
 -- value in the same commit, saying why), not that rigidlab became nondeterministic.
 local T = dofile("testing.lua")
 
-local STORED_HASH = "3a6a2ee7577a3e3e"
+local STORED_HASH = "1c78a3bffa57a536"
 
 -- A tiny linear congruential generator, so the scene does not depend on math.random.
 local function generator(seed)
