@@ -10,7 +10,8 @@
 //                of the time steps)
 //   solve        `iterations` Gauss-Seidel sweeps over joints then contacts, alternating
 //                direction, rigid on the velocities; soft_step also sweeps its soft position
-//                feedback ("with bias", below) each time
+//                feedback ("with bias", below) each time; soft_step solves the equality rows
+//                of the joints that form a forest exactly in each sweep (engine/joint_tree.hpp)
 //   integrate    the solver bodies record how far they moved (Δx = h (u + u_push), Δθ the
 //   positions    same) while the integrator's position stage moves the bodies
 //   relax        soft_step: `relax_iterations` rigid sweeps without position feedback, so the
@@ -44,6 +45,7 @@
 #include "engine/constraint.hpp"
 #include "engine/constraint_row.hpp"
 #include "engine/contact_constraints.hpp"
+#include "engine/joint_tree.hpp"
 #include "engine/solver_settings.hpp"
 #include "engine/step_poll.hpp"
 
@@ -135,6 +137,7 @@ class Solver {
     bool pushes;          // springs and motors: whether the push applies
     std::uint32_t a, b;   // solver slots
     JointRow::Kind kind;
+    bool tree;            // in tree_ (engine/joint_tree.hpp)
   };
   static constexpr int max_block = 6;
   using BlockMatrix = Eigen::Matrix<double, max_block, max_block>;
@@ -143,12 +146,16 @@ class Solver {
     std::uint32_t first;
     std::uint8_t size;
     std::uint32_t block;  // index in block_inverse_ when size > 1
+    bool tree = false;    // solved by tree_ (while its factor is valid)
   };
   double sweep_joints(bool forward);
   double solve_block(const Group& g, SolverBody* set, const double* bias, const Softness& soft,
                      bool push);
   void group_rows(std::size_t first);
   void push_joints(bool forward, bool feedback);
+  void offer_to_tree(const Group& g);
+  void refresh_curvature();
+  double solve_tree(const JointTree::Factor& f, bool push);
   double joint_bias(const Row& r) const;
   void prepare_oscillator(Row& r, const JointRow& spec) const;
   void build_rows_ahead(Constraint& joint, const Body& a, const Body* b, const SolverBody& sa,
@@ -163,8 +170,16 @@ class Solver {
   std::vector<JointRow> scratch_;
   std::vector<JointRow> ahead_;
   std::vector<Group> groups_;
+  // The joints' equality blocks that form a forest over the dynamic bodies, solved exactly in
+  // one pass (engine/joint_tree.hpp): factored for the rigid velocity rows and for soft_step's
+  // soft position rows; tree_rows_ maps the tree's rows to rows_.
+  JointTree tree_;
+  JointTree::Factor rigid_factor_, soft_factor_;
+  std::vector<std::uint32_t> tree_rows_;
+  std::vector<double> tree_bias_, tree_impulse_;
   std::vector<BlockMatrix> block_inverse_;  // K⁻¹ of each block, padded with zeros  // the rows at the poses the free velocities reach
   const std::vector<JointRef>* joints_ = nullptr;
+  const std::vector<Body>* bodies_in_ = nullptr;
   std::vector<double> report_;
   double h_ = 0.0;
   double last_h_ = 0.0;
