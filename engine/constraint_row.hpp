@@ -74,12 +74,19 @@ inline Jacobian angular_jacobian(const Vec3& k) { return {Vec3::Zero(), k, k}; }
 //   m_a⁻¹ l_i·l_j + (A_a,i)·I_a⁻¹(A_a,j) + m_b⁻¹ l_i·l_j + (A_b,i)·I_b⁻¹(A_b,j).
 // With i = j it is the inverse of the row's effective mass; a manifold's K matrix and the
 // 3 x 3 inverse mass matrix of a contact point are made of these entries.
+// The same with row j's angular parts already weighted (weighted_a = I_a⁻¹ angular_a, as a
+// prepared ConstraintRow holds them): no 3 x 3 products for the rows of a step's contacts.
+inline double coupling_weighted(const Jacobian& i, const Jacobian& j, double inverse_mass_a,
+                                const Vec3& weighted_a, double inverse_mass_b,
+                                const Vec3& weighted_b) {
+  return (inverse_mass_a + inverse_mass_b) * i.linear.dot(j.linear) +
+         i.angular_a.dot(weighted_a) + i.angular_b.dot(weighted_b);
+}
 inline double coupling(const Jacobian& i, const Jacobian& j, double inverse_mass_a,
                        const Mat3& inverse_inertia_a, double inverse_mass_b,
                        const Mat3& inverse_inertia_b) {
-  return (inverse_mass_a + inverse_mass_b) * i.linear.dot(j.linear) +
-         i.angular_a.dot(inverse_inertia_a * j.angular_a) +
-         i.angular_b.dot(inverse_inertia_b * j.angular_b);
+  return coupling_weighted(i, j, inverse_mass_a, Vec3(inverse_inertia_a * j.angular_a),
+                           inverse_mass_b, Vec3(inverse_inertia_b * j.angular_b));
 }
 inline double coupling(const Jacobian& i, const Jacobian& j, const SolverBody& a,
                        const SolverBody& b) {
@@ -117,7 +124,8 @@ struct ConstraintRow {
 inline void prepare_row(ConstraintRow& row, const SolverBody& a, const SolverBody& b) {
   row.weighted_a = a.inverse_inertia * row.jacobian.angular_a;
   row.weighted_b = b.inverse_inertia * row.jacobian.angular_b;
-  const double k = coupling(row.jacobian, row.jacobian, a, b);
+  const double k = coupling_weighted(row.jacobian, row.jacobian, a.inverse_mass, row.weighted_a,
+                                     b.inverse_mass, row.weighted_b);
   row.mass = k > 0.0 && std::isfinite(k) ? 1.0 / k : 0.0;
 }
 

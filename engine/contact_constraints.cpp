@@ -147,7 +147,7 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
         prepare_row(*row, a, b);
       }
     }
-    prepare_block(mi);
+    prepare_block(mi, false);
   }
 }
 
@@ -512,7 +512,7 @@ Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
 // K = J W Jᵀ of the manifold's normal rows (coupling(), engine/constraint_row.hpp), then the
 // rigid and soft block matrices of the header. Four points get their null vector c projected
 // out; two or three points must give a well-conditioned K (else no block).
-void ContactConstraints::prepare_block(std::size_t manifold) {
+void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Manifold& m = manifolds_[manifold];
   m.block = false;
   const int count = static_cast<int>(m.count);
@@ -521,12 +521,15 @@ void ContactConstraints::prepare_block(std::size_t manifold) {
   const SolverBody& b = found_with_[m.b];
   Eigen::Matrix4d k = Eigen::Matrix4d::Identity();  // unused rows and columns: decoupled
   double trace = 0.0;
-  for (int i = 0; i < count; ++i)
-    for (int j = 0; j < count; ++j) {
-      k(i, j) = coupling(points_[m.first + i].normal.jacobian, points_[m.first + j].normal.jacobian,
-                         a, b);
-      if (i == j) trace += k(i, i);
-    }
+  // From the prepared normal rows' W Jᵀ (coupling_weighted), each pair once (K is symmetric).
+  for (int j = 0; j < count; ++j) {
+    const ConstraintRow& row = points_[m.first + j].normal;
+    for (int i = 0; i <= j; ++i)
+      k(i, j) = k(j, i) =
+          coupling_weighted(points_[m.first + i].normal.jacobian, row.jacobian, a.inverse_mass,
+                            row.weighted_a, b.inverse_mass, row.weighted_b);
+    trace += k(j, j);
+  }
   if (!(trace > 0.0) || !std::isfinite(trace)) return;
   const double scale = trace / count;
   Eigen::Vector4d c = Eigen::Vector4d::Zero();
@@ -555,6 +558,10 @@ void ContactConstraints::prepare_block(std::size_t manifold) {
   block.rigid_projector = pseudo * k;
   // Soft: (K + γI)⁻¹ on the range of K (the component along c of a residual has no impulse
   // that could change it, and would be amplified by 1/γ).
+  if (!soft_too) {  // after the positions moved: the push sweeps are done
+    m.block = true;
+    return;
+  }
   m.compliance = scale * m.softness.compliance();
   if (m.compliance > 0.0) {
     Eigen::Matrix4d soft = k + m.compliance * Eigen::Matrix4d::Identity();

@@ -258,7 +258,8 @@ class ContactConstraints {
   std::pair<const ContactInfo*, const ContactInfo*> previous_points(const Manifold& m) const;
   const ContactInfo* previous_point(const Point& p, const ContactInfo* first,
                                     const ContactInfo* last) const;
-  void prepare_block(std::size_t manifold);
+  // The rigid block matrices, and the soft ones (push sweeps) with soft_too.
+  void prepare_block(std::size_t manifold, bool soft_too = true);
   double current_separation(const Manifold& m, const Point& p) const;
   void turn_to_centres(Manifold& m, const Vec3& apart);
   bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
