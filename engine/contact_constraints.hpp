@@ -75,6 +75,9 @@
 //   reflects its normal velocities). A round with a bounce sweeps until it converges, within a
 //   budget of manifold solves (contact_restitution.cpp round_work): a round spanning a heap
 //   gets the velocity stage's `iterations` sweeps, as a round of landings does.
+//   The speculative impulse the sweeps stopped such an impact with (inelastic, and passed on
+//   inelastically along a chain of gaps closed in one step) is taken back first, where nothing
+//   else pushed its bodies (take_back_speculative).
 // - Lever arms after the positions moved: an impulse pair at one point conserves angular
 //   momentum, but the relax and restitution impulses act after the bodies moved by Δx_a, Δx_b,
 //   and with the arms of the start, x_a + r_a and x_b + r_b are then two points h (u_b − u_a)
@@ -262,6 +265,7 @@ class ContactConstraints {
   void prepare_block(std::size_t manifold, bool soft_too = true);
   double current_separation(const Manifold& m, const Point& p) const;
   void turn_to_centres(Manifold& m, const Vec3& apart);
+  void take_back_speculative();
   bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
                    Softness& soft) const;
   void solve_friction(Manifold& m, bool forward);
@@ -303,6 +307,7 @@ class ContactConstraints {
   std::vector<Block> blocks_;  // by manifold
   // Restitution: per body, whether a resting contact supports it; its velocity then.
   std::vector<unsigned char> supported_;
+  std::vector<unsigned char> held_;  // per body: pushed by a contact that keeps its impulse
   std::vector<std::uint32_t> round_manifolds_;  // the manifolds a restitution round sweeps
   bool bounces_ = false;  // the present round has a bounce (a target > 0)
   std::vector<Vec3> start_velocity_, start_angular_velocity_;  // u before warm starting
