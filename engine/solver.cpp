@@ -48,14 +48,8 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
     build_rows_ahead(*joint.constraint, bodies[joint.a], b, bodies_[a_slot], bodies_[b_slot]);
     for (std::size_t k = 0; k < scratch_.size(); ++k) {
       const JointRow& spec = scratch_[k];
-      Row r{};
-      r.row.jacobian = spec.jacobian;
-      prepare_row(r.row, bodies_[a_slot], bodies_[b_slot]);
-      r.a = a_slot, r.b = b_slot;
-      r.kind = spec.kind;
-      r.error = spec.error;
+      Row r = make_row(spec, a_slot, b_slot);
       r.soft = joint_soft;
-      if (spec.kind == JointRow::Kind::limit) r.row.lower = 0.0;
       if (spec.kind == JointRow::Kind::equality)
         r.bias = (ahead_[k].error - spec.error) / h -
                  row_velocity(r.row, bodies_[a_slot], bodies_[b_slot]);
@@ -90,6 +84,19 @@ void Solver::offer_to_tree(const Group& g) {
     rows_[g.first + i].tree = true;
     tree_rows_.push_back(g.first + i);
   }
+}
+
+// A rigid row of `spec` between two solver slots, its effective mass at their present inverse
+// inertias; limits one-sided.
+Solver::Row Solver::make_row(const JointRow& spec, std::uint32_t a, std::uint32_t b) const {
+  Row r{};
+  r.row.jacobian = spec.jacobian;
+  prepare_row(r.row, bodies_[a], bodies_[b]);
+  r.a = a, r.b = b;
+  r.kind = spec.kind;
+  r.error = spec.error;
+  if (spec.kind == JointRow::Kind::limit) r.row.lower = 0.0;
+  return r;
 }
 
 // The groups of a joint's rows from `first` on (JointRow::block), each block with the inverse
@@ -484,6 +491,69 @@ void Solver::correct_joint_positions(std::vector<Body>& bodies,
       }
     }
   }
+}
+
+// ---- sequential_impulses' velocity projection -----------------------------------------------------
+//
+// The velocity sweeps aim at the END of the substep (build_rows_ahead: J v' = −R/h at the start
+// pose), so the velocities they leave carry the constraint's curvature and do not satisfy the
+// rows at the start pose; after the positions moved, neither do they at the end pose, by
+// O(h |v|²/L). sequential_impulses is document 000's solver, whose velocities satisfy the
+// constraints: so at the end of each substep the joints' rows are rebuilt at the final
+// (position-corrected) poses and the velocities projected on them, J(x_end) v = 0 (limits:
+// not approaching past the bound; springs and motors are not constraints and are left out),
+// by the same rigid sweeps. With the look-ahead sweep this is RATTLE (Andersen 1983: SHAKE's
+// position half, then the velocity half on the constraint's tangent at the new position),
+// symplectic like SHAKE; the projection does not change the motion, as the next substep's
+// sweeps project the velocities on the same rows again (a projection of a projection), but
+// what a user reads after a step is a velocity the joints allow, at the pose they see. A
+// pendulum with plain rows at the start pose instead (J v' = 0 there, then the positions move
+// on the tangent and are corrected back) loses a fraction (h ω)² of its energy per substep:
+// measured, its period at 80° came out 1.8 % short at 60 Hz with 4 substeps.
+void Solver::project_velocities(std::vector<Body>& bodies) {
+  if (kind != SolverKind::sequential_impulses || joints_ == nullptr || joints_->empty()) return;
+  auto load = [&](std::size_t i) {
+    const Body& body = bodies[i];
+    SolverBody& s = bodies_[i];
+    s = SolverBody{};
+    if (body.inverse_mass == 0.0) return;
+    const Mat3 r = body.orientation.toRotationMatrix();
+    s.velocity = body.velocity;
+    s.angular_velocity = body.angular_velocity;
+    s.inverse_mass = body.inverse_mass;
+    s.inverse_inertia = r * body.inverse_inertia * r.transpose();
+  };
+  for (const JointRef& joint : *joints_) {
+    load(joint.a);
+    if (joint.b != no_body) load(joint.b);
+  }
+  rows_.clear();
+  groups_.clear();
+  block_inverse_.clear();
+  for (const JointRef& joint : *joints_) {
+    const Body* b = joint.b == no_body ? nullptr : &bodies[joint.b];
+    scratch_.resize(static_cast<std::size_t>(joint.constraint->row_count()));
+    joint.constraint->build_rows(bodies[joint.a], b, scratch_.data());
+    const std::uint32_t a_slot = static_cast<std::uint32_t>(joint.a);
+    const std::uint32_t b_slot = static_cast<std::uint32_t>(b == nullptr ? ground() : joint.b);
+    for (const JointRow& spec : scratch_) {
+      Row r = make_row(spec, a_slot, b_slot);
+      if (spec.kind == JointRow::Kind::spring || spec.kind == JointRow::Kind::motor)
+        r.row.lower = r.row.upper = 0.0;  // no constraint: never moves
+      rows_.push_back(r);
+    }
+    group_rows(rows_.size() - scratch_.size());
+  }
+  for (int sweep = 0; sweep < settings.iterations; ++sweep) {
+    if (poll != nullptr) poll->tick(rows_.size());
+    sweep_joints(sweep % 2 == 0);
+  }
+  for (const JointRef& joint : *joints_)
+    for (std::size_t i : {joint.a, joint.b}) {
+      if (i == no_body || bodies[i].inverse_mass == 0.0) continue;
+      bodies[i].velocity = bodies_[i].velocity;
+      bodies[i].angular_velocity = bodies_[i].angular_velocity;
+    }
 }
 
 // ---- store -------------------------------------------------------------------------------------

@@ -20,6 +20,8 @@
 //   correct      sequential_impulses: non-linear Gauss-Seidel position sweeps for contacts and
 //                joint rows (Box2D v2.4's position solver)
 //   store        the impulses, for the reports and the next step's warm start
+//   project      sequential_impulses: the joints' velocities on their rows at the final poses
+//                (RATTLE's velocity half; engine/solver.cpp), after the end-of-step velocities
 // Box2D v3 runs the prepare stage once per step and its substeps inside the solver; here a
 // world substep is a whole pass (forces, collision, all stages), because the integrators
 // evaluate forces at every substep and the contacts are found at the substep's poses.
@@ -83,6 +85,9 @@ class Solver {
   // sequential_impulses only; returns the first body whose state is not finite, or all_finite.
   std::size_t correct_positions(std::vector<Body>& bodies);
   void store();
+  // sequential_impulses only, after the end-of-step velocities are written: the joints'
+  // velocity rows at the final poses (RATTLE's velocity half, engine/solver.cpp).
+  void project_velocities(std::vector<Body>& bodies);
 
   // ---- results ----
   const std::vector<ContactInfo>& contacts() const { return contacts_.contacts(); }
@@ -148,6 +153,7 @@ class Solver {
     std::uint32_t block;  // index in block_inverse_ when size > 1
     bool tree = false;    // solved by tree_ (while its factor is valid)
   };
+  Row make_row(const JointRow& spec, std::uint32_t a, std::uint32_t b) const;
   double sweep_joints(bool forward);
   double solve_block(const Group& g, SolverBody* set, const double* bias, const Softness& soft,
                      bool push);

@@ -237,6 +237,7 @@ std::size_t World::free_substep(double t, double h, BodyState* save_to) {
 //   7 relax (soft_step), 8 restitution                engine/solver.cpp, contact_restitution.cpp
 //   9 position correction (sequential_impulses)       engine/contact_positions.cpp
 //  10 store impulses, 11 end-of-step velocities       engine/solver.cpp, integrators.cpp
+//  12 joint velocity projection (sequential_impulses) engine/solver.cpp
 std::size_t World::substep(double t, double h, BodyState* save_to) {
   if (!has_constraints()) return free_substep(t, h, save_to);
   if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
@@ -259,6 +260,7 @@ std::size_t World::substep(double t, double h, BodyState* save_to) {
   bad = solver_.correct_positions(bodies);
   solver_.store();
   const std::size_t finish = finish_stage(bodies, solver_.bodies(), stages_);
+  if (bad == all_finite && finish == all_finite) solver_.project_velocities(bodies);
   return std::min(bad, finish);
 }
 
