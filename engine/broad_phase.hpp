@@ -126,7 +126,7 @@ class BroadPhase {
   }
   // Of a live proxy (unchecked: see contains()).
   const Aabb& box(ProxyId id) const { return proxies_[id].box; }
-  const Aabb& fat_box(ProxyId id) const { return proxies_[id].fat; }
+  const Aabb& fat_box(ProxyId id) const { return tree(proxies_[id].kind).box(proxies_[id].leaf); }
   std::uint64_t key(ProxyId id) const { return proxies_[id].key; }
   ProxyKind kind(ProxyId id) const { return proxies_[id].kind; }
 
@@ -147,13 +147,8 @@ class BroadPhase {
   std::string check() const;
 
  private:
-  // The proxies are in the order they were created (a world's: the order of its bodies), and
-  // each keeps a copy of its fat box: the pass of move_proxy over every body reads them in
-  // that order, where the tree's leaves lie wherever insertion put them (at 100k bodies a
-  // cache miss per body and step).
   struct Proxy {
     Aabb box;                           // tight box, as last given
-    Aabb fat;                           // its box in the tree
     std::uint64_t key = 0;
     std::int32_t leaf = DynamicTree::null_node;  // in tree(kind); null_node once destroyed
     ProxyKind kind = ProxyKind::moving;
