@@ -34,6 +34,8 @@ void JointTree::clear(std::size_t slots) {
   union_find_.resize(slots);
   std::iota(union_find_.begin(), union_find_.end(), 0u);
   grounded_.assign(slots, 0);
+  refused_.clear();
+  taken_.clear();
 }
 
 std::uint32_t JointTree::find(std::uint32_t slot) {
@@ -55,24 +57,66 @@ std::int32_t JointTree::node_of(std::uint32_t slot, const SolverBody* bodies) {
 
 bool JointTree::offer(std::uint32_t a, std::uint32_t b, const Jacobian* rows, int size,
                       const SolverBody* bodies) {
+  taken_.push_back(0);
   if (size < 1 || size > max_rows || a == b) return false;
   const bool dynamic_a = bodies[a].inverse_mass > 0.0, dynamic_b = bodies[b].inverse_mass > 0.0;
   if (!dynamic_a && !dynamic_b) return false;
   if (dynamic_a && dynamic_b) {  // joins two trees, or closes a loop
     const std::uint32_t ra = find(a), rb = find(b);
-    if (ra == rb || (grounded_[ra] && grounded_[rb])) return false;
+    if (ra == rb || (grounded_[ra] && grounded_[rb])) {
+      refused_.push_back(a);
+      return false;
+    }
     union_find_[ra] = rb;
     grounded_[rb] = grounded_[ra] || grounded_[rb];
   } else {  // to the world: a tree holds to the world by one joint at most
-    const std::uint32_t r = find(dynamic_a ? a : b);
-    if (grounded_[r]) return false;
+    const std::uint32_t slot = dynamic_a ? a : b;
+    const std::uint32_t r = find(slot);
+    if (grounded_[r]) {
+      refused_.push_back(slot);
+      return false;
+    }
     grounded_[r] = 1;
   }
   JointNode j{a, b, node_of(a, bodies), node_of(b, bodies),
-              static_cast<std::uint32_t>(jacobians_.size()), static_cast<std::uint8_t>(size), true};
+              static_cast<std::uint32_t>(jacobians_.size()), static_cast<std::uint8_t>(size),
+              static_cast<std::uint32_t>(taken_.size() - 1), true};
   joints_.push_back(j);
   jacobians_.insert(jacobians_.end(), rows, rows + size);
+  taken_.back() = 1;
   return true;
+}
+
+void JointTree::drop_looped() {
+  if (refused_.empty()) return;
+  looped_.assign(union_find_.size(), 0);
+  for (std::uint32_t slot : refused_) looped_[find(slot)] = 1;
+  // Keep the joints of the other trees, their rows and body nodes renumbered in order.
+  std::fill(slot_node_.begin(), slot_node_.end(), -1);
+  body_nodes_.clear();
+  kept_rows_.clear();
+  std::size_t kept = 0;
+  for (JointNode j : joints_) {
+    const std::uint32_t slot = j.node_a >= 0 ? j.a : j.b;
+    if (looped_[find(slot)]) {
+      taken_[j.offer] = 0;
+      continue;
+    }
+    kept_rows_.insert(kept_rows_.end(), jacobians_.begin() + j.first,
+                      jacobians_.begin() + j.first + j.size);
+    j.first = static_cast<std::uint32_t>(kept_rows_.size() - j.size);
+    for (auto [side, node] : {std::pair{j.a, &j.node_a}, std::pair{j.b, &j.node_b}}) {
+      if (*node < 0) continue;
+      if (slot_node_[side] < 0) {
+        slot_node_[side] = static_cast<std::int32_t>(body_nodes_.size());
+        body_nodes_.push_back({side, -1});
+      }
+      *node = slot_node_[side];
+    }
+    joints_[kept++] = j;
+  }
+  joints_.resize(kept);
+  jacobians_.swap(kept_rows_);
 }
 
 // Breadth first from a root body of each tree: the order is root first, every node after its

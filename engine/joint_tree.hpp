@@ -84,6 +84,11 @@ class JointTree {
   // The taken joints' rows are numbered in the order offered.
   bool offer(std::uint32_t a, std::uint32_t b, const Jacobian* rows, int size,
              const SolverBody* bodies);
+  // Drops every tree that a refused joint would have closed a loop in (after the last offer,
+  // before order): those trees are then swept by Gauss-Seidel as a whole.
+  void drop_looped();
+  // Whether the joint of the k-th offer (counting every call) is in the forest.
+  bool taken(std::size_t k) const { return k < taken_.size() && taken_[k] != 0; }
   // Orders the forest leaves-first (after the last offer).
   void order();
   // Factors K + Γ, Γ_j = compliance · K_jj, for the bodies' present inverse mass properties.
@@ -106,6 +111,7 @@ class JointTree {
     std::int32_t node_b = -1;
     std::uint32_t first = 0;   // first tree row
     std::uint8_t size = 0;
+    std::uint32_t offer = 0;   // its offer's number
     bool parent_is_a = true;   // which side is the parent (a body node, or the world)
     std::int32_t parent() const { return parent_is_a ? node_a : node_b; }
     std::int32_t child() const { return parent_is_a ? node_b : node_a; }
@@ -132,6 +138,10 @@ class JointTree {
   std::vector<std::int32_t> slot_node_;     // body node of each slot, −1 if none
   std::vector<std::uint32_t> union_find_;   // by slot
   std::vector<std::uint8_t> grounded_;      // by union-find root: the tree has a world joint
+  std::vector<std::uint8_t> looped_;        // by union-find root: a joint was refused in it
+  std::vector<std::uint32_t> refused_;      // a dynamic slot of each joint refused for a loop
+  std::vector<std::uint8_t> taken_;         // by offer
+  std::vector<Jacobian> kept_rows_;         // drop_looped's scratch
   std::vector<std::uint32_t> adjacency_start_, adjacency_, cursor_;  // joints of each body node
   std::vector<Order> order_;  // root first; eliminated from the back
   // solve scratch, by node

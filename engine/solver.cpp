@@ -35,6 +35,7 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
   block_inverse_.clear();
   tree_.clear(bodies_.size());
   tree_rows_.clear();
+  tree_offers_.clear();
   const Softness joint_soft = make_soft(settings.joint_hertz, settings.joint_damping_ratio, h);
   for (const JointRef& joint : joints) {
     const Body* b = joint.b == no_body ? nullptr : &bodies[joint.b];
@@ -59,13 +60,8 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
     }
     group_rows(rows_.size() - scratch_.size());
   }
-  tree_.order();
-  tree_bias_.resize(tree_rows_.size());
-  tree_impulse_.resize(tree_rows_.size());
   rigid_factor_.valid = soft_factor_.valid = false;
-  if (kind != SolverKind::soft_step) return;
-  tree_.factor(bodies_.data(), 0.0, rigid_factor_);
-  tree_.factor(bodies_.data(), joint_soft.compliance(), soft_factor_);
+  if (kind == SolverKind::soft_step && !tree_offers_.empty()) build_tree(joint_soft.compliance());
 }
 
 // Offers a group of equality rows to the joint forest (a joint's block, or the single equality
@@ -78,12 +74,31 @@ void Solver::offer_to_tree(const Group& g) {
   if (g.size == 1 && !(rows[0].kind == JointRow::Kind::equality && rows[0].row.mass > 0.0)) return;
   Jacobian jacobians[JointTree::max_rows];
   for (int i = 0; i < g.size; ++i) jacobians[i] = rows[i].row.jacobian;
-  if (!tree_.offer(rows[0].a, rows[0].b, jacobians, g.size, bodies_.data())) return;
-  groups_.back().tree = true;
-  for (std::uint32_t i = 0; i < g.size; ++i) {
-    rows_[g.first + i].tree = true;
-    tree_rows_.push_back(g.first + i);
+  tree_.offer(rows[0].a, rows[0].b, jacobians, g.size, bodies_.data());
+  tree_offers_.push_back(static_cast<std::uint32_t>(groups_.size() - 1));
+}
+
+// The forest: only trees without a loop (a tree that a refused joint would have closed, the
+// whole of joint_grid's lattice for one, stays with Gauss-Seidel: measured on a 25 x 25 grid of
+// hinges, a spanning forest solved exactly with Gauss-Seidel for the loops' joints cost 2.4 to
+// 2.6 times the step and left the worst joint error after 4 s at 4.4 cm against 2.0 cm). Ordered
+// and factored for the rigid velocity rows and for the soft position rows.
+void Solver::build_tree(double compliance) {
+  tree_.drop_looped();
+  for (std::size_t k = 0; k < tree_offers_.size(); ++k) {
+    if (!tree_.taken(k)) continue;
+    Group& g = groups_[tree_offers_[k]];
+    g.tree = true;
+    for (std::uint32_t i = 0; i < g.size; ++i) {
+      rows_[g.first + i].tree = true;
+      tree_rows_.push_back(g.first + i);
+    }
   }
+  tree_.order();
+  tree_bias_.resize(tree_rows_.size());
+  tree_impulse_.resize(tree_rows_.size());
+  tree_.factor(bodies_.data(), 0.0, rigid_factor_);
+  tree_.factor(bodies_.data(), compliance, soft_factor_);
 }
 
 // A rigid row of `spec` between two solver slots, its effective mass at their present inverse

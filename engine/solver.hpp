@@ -161,6 +161,7 @@ class Solver {
   void push_joints(bool forward, bool feedback);
   void offer_to_tree(const Group& g);
   void refresh_curvature();
+  void build_tree(double compliance);
   double solve_tree(const JointTree::Factor& f, bool push);
   double joint_bias(const Row& r) const;
   void prepare_oscillator(Row& r, const JointRow& spec) const;
@@ -182,6 +183,7 @@ class Solver {
   JointTree tree_;
   JointTree::Factor rigid_factor_, soft_factor_;
   std::vector<std::uint32_t> tree_rows_;
+  std::vector<std::uint32_t> tree_offers_;  // the group of each offer
   std::vector<double> tree_bias_, tree_impulse_;
   std::vector<BlockMatrix> block_inverse_;  // K⁻¹ of each block, padded with zeros  // the rows at the poses the free velocities reach
   const std::vector<JointRef>* joints_ = nullptr;
