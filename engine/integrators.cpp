@@ -21,13 +21,6 @@ using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;  // a quaternion's c
 #define RIGIDLAB_FLATTEN
 #endif
 
-template <std::size_t N, class Enum>
-std::optional<Enum> parse_name(const char* const (&names)[N], std::string_view name) {
-  for (std::size_t i = 0; i < N; ++i)
-    if (name == names[i]) return static_cast<Enum>(i);
-  return std::nullopt;
-}
-
 // rotate_by, here so the body loops inline it.
 inline Quat exact_rotation(const Quat& q, const Vec3& omega_world, double dt) {
   return unit(Quat(rotation_quat(dt * omega_world) * q));
@@ -314,12 +307,8 @@ RIGIDLAB_FLATTEN void rk4_constant_forces(Body& b, const Vec3& gravity, double d
 
 }  // namespace
 
-std::optional<Integrator> parse_integrator(std::string_view name) {
-  return parse_name<std::size(integrator_names), Integrator>(integrator_names, name);
-}
-
 std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name) {
-  return parse_name<std::size(gyroscopic_names), GyroscopicTerm>(gyroscopic_names, name);
+  return parse_name<GyroscopicTerm>(gyroscopic_names, name);
 }
 
 Quat rotate_by(const Quat& q, const Vec3& omega_world, double dt) {

@@ -26,19 +26,17 @@
 #include "engine/body.hpp"
 #include "engine/constraint_row.hpp"
 #include "engine/free_rotation.hpp"
+#include "engine/integrator_kind.hpp"
 
 namespace rigidlab {
 
-enum class Integrator { euler, semi_implicit, rk4 };
 // How the Euler family treats the gyroscopic torque −ω × I ω (`explicit` is a keyword):
 // `conserving` replaces the whole rotational update by the splitting of engine/free_rotation.hpp.
 enum class GyroscopicTerm { conserving, implicit, explicit_, off };
 inline constexpr GyroscopicTerm default_gyroscopic = GyroscopicTerm::conserving;
 
 // The user-facing names, in enum order.
-inline constexpr const char* integrator_names[] = {"euler", "semi_implicit", "rk4"};
 inline constexpr const char* gyroscopic_names[] = {"conserving", "implicit", "explicit", "off"};
-std::optional<Integrator> parse_integrator(std::string_view name);
 std::optional<GyroscopicTerm> parse_gyroscopic(std::string_view name);
 
 inline constexpr std::size_t all_finite = static_cast<std::size_t>(-1);

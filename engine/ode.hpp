@@ -21,20 +21,19 @@
 #include <optional>
 #include <string_view>
 
+#include "engine/integrator_kind.hpp"
 #include "engine/math.hpp"
 #include "engine/runge_kutta.hpp"
 
 namespace rigidlab::ode {
 
-enum class SecondOrderMethod { euler, semi_implicit, rk4 };
+// A second-order system takes the world's Integrator (engine/integrator_kind.hpp).
 enum class FirstOrderMethod { euler, midpoint, heun, rk4 };
 
 // The user-facing names, in enum order, for option parsing and messages.
-inline constexpr const char* second_order_method_names[] = {"euler", "semi_implicit", "rk4"};
 inline constexpr const char* first_order_method_names[] = {"euler", "midpoint", "heun", "rk4"};
 
 // The method called `name`, or nothing for an unknown name.
-std::optional<SecondOrderMethod> parse_second_order_method(std::string_view name);
 std::optional<FirstOrderMethod> parse_first_order_method(std::string_view name);
 
 // ---- second order: x'' = a(t, x, v) ------------------------------------------------------
@@ -102,11 +101,11 @@ void rk4_step(double t, State& x, State& v, double dt, Accel&& accel) {
 
 // One step of `method`.
 template <class State, class Accel>
-void step(SecondOrderMethod method, double t, State& x, State& v, double dt, Accel&& accel) {
+void step(Integrator method, double t, State& x, State& v, double dt, Accel&& accel) {
   switch (method) {
-    case SecondOrderMethod::euler: euler_step(t, x, v, dt, accel); return;
-    case SecondOrderMethod::semi_implicit: semi_implicit_euler_step(t, x, v, dt, accel); return;
-    case SecondOrderMethod::rk4: rk4_step(t, x, v, dt, accel); return;
+    case Integrator::euler: euler_step(t, x, v, dt, accel); return;
+    case Integrator::semi_implicit: semi_implicit_euler_step(t, x, v, dt, accel); return;
+    case Integrator::rk4: rk4_step(t, x, v, dt, accel); return;
   }
 }
 

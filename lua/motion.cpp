@@ -12,24 +12,22 @@
 namespace rigidlab::lua {
 namespace {
 
-using ode::SecondOrderMethod;
-
 // The trajectory is kept in memory: 10⁶ steps of vec3 states are about 200 MB of Lua values.
 constexpr lua_Integer max_steps = 1'000'000;
 
 struct Options {
-  SecondOrderMethod method = SecondOrderMethod::semi_implicit;
+  Integrator method = Integrator::semi_implicit;
   int accel_index = 0;  // stack index of the acceleration function
   double dt = 0.0;      // s
   double t0 = 0.0;      // s
   int steps = 0;
 };
 
-SecondOrderMethod field_method(lua_State* L) {
-  SecondOrderMethod method = SecondOrderMethod::semi_implicit;
+Integrator field_method(lua_State* L) {
+  Integrator method = Integrator::semi_implicit;
   if (get_field(L, 1, "method") != LUA_TNIL)
-    method = static_cast<SecondOrderMethod>(
-        check_option(L, -1, Where::field(1, "method"), ode::second_order_method_names));
+    method = static_cast<Integrator>(
+        check_option(L, -1, Where::field(1, "method"), integrator_names));
   lua_pop(L, 1);
   return method;
 }

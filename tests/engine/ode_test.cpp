@@ -14,7 +14,7 @@ namespace {
 
 // Integrates x'' = accel from (x0, v0) at t = 0 for `steps` steps of dt.
 template <class State, class Accel>
-void integrate(SecondOrderMethod method, State& x, State& v, double dt, int steps, Accel accel) {
+void integrate(Integrator method, State& x, State& v, double dt, int steps, Accel accel) {
   for (int n = 0; n < steps; ++n) step(method, n * dt, x, v, dt, accel);
 }
 
@@ -23,10 +23,10 @@ TEST(OdeSecondOrder, CarOfDocument003) {
   // ½ a t² = 500 m; the document's table (velocity first) reaches 550 m; Euler with the old
   // velocity lags behind, Σ_{n<10} 10 n = 450 m; RK4 is exact for a constant acceleration.
   const auto accel = [](double, double, double) { return 10.0; };
-  const struct { SecondOrderMethod method; double x; } cases[] = {
-      {SecondOrderMethod::euler, 450.0},
-      {SecondOrderMethod::semi_implicit, 550.0},
-      {SecondOrderMethod::rk4, 500.0}};
+  const struct { Integrator method; double x; } cases[] = {
+      {Integrator::euler, 450.0},
+      {Integrator::semi_implicit, 550.0},
+      {Integrator::rk4, 500.0}};
   for (const auto& c : cases) {
     double x = 0.0, v = 0.0;
     integrate(c.method, x, v, 1.0, 10, accel);
@@ -65,14 +65,14 @@ TEST(OdeSecondOrder, Rk4UsesTheStageTimes) {
   // a wrong stage time would break it.
   double x = 0.0, v = 0.0;
   const double dt = 0.25;
-  integrate(SecondOrderMethod::rk4, x, v, dt, 8, [](double t, double, double) { return t; });
+  integrate(Integrator::rk4, x, v, dt, 8, [](double t, double, double) { return t; });
   EXPECT_NEAR(x, 8.0 / 6.0, 1e-13);  // t = 2
   EXPECT_NEAR(v, 2.0, 1e-13);
 }
 
 // The error of (x, v) at T = 2 s for x'' = −ω² x, x(0) = 1, v(0) = 0 (ω = 3 rad/s); the
 // closed form is x = cos ωt, v = −ω sin ωt.
-double oscillator_error(SecondOrderMethod method, double dt) {
+double oscillator_error(Integrator method, double dt) {
   const double omega = 3.0, duration = 2.0;
   const int steps = static_cast<int>(std::lround(duration / dt));
   double x = 1.0, v = 0.0;
@@ -83,14 +83,14 @@ double oscillator_error(SecondOrderMethod method, double dt) {
 
 TEST(OdeSecondOrder, ConvergenceOrdersOnTheHarmonicOscillator) {
   // Global error ~ C dt^p: p = log2(e(dt) / e(dt/2)).
-  const struct { SecondOrderMethod method; double dt; double order; } cases[] = {
-      {SecondOrderMethod::euler, 1e-3, 1.0},
-      {SecondOrderMethod::semi_implicit, 1e-3, 1.0},
-      {SecondOrderMethod::rk4, 2e-2, 4.0}};
+  const struct { Integrator method; double dt; double order; } cases[] = {
+      {Integrator::euler, 1e-3, 1.0},
+      {Integrator::semi_implicit, 1e-3, 1.0},
+      {Integrator::rk4, 2e-2, 4.0}};
   for (const auto& c : cases) {
     const double order =
         std::log2(oscillator_error(c.method, c.dt) / oscillator_error(c.method, c.dt / 2));
-    EXPECT_NEAR(order, c.order, 0.1) << second_order_method_names[static_cast<int>(c.method)];
+    EXPECT_NEAR(order, c.order, 0.1) << integrator_names[static_cast<int>(c.method)];
   }
 }
 
@@ -114,12 +114,12 @@ TEST(OdeSecondOrder, SemiImplicitKeepsTheOscillatorEnergyBounded) {
 }
 
 TEST(OdeSecondOrder, AThrowingAccelerationLeavesTheStateUnchanged) {
-  for (SecondOrderMethod method :
-       {SecondOrderMethod::euler, SecondOrderMethod::semi_implicit, SecondOrderMethod::rk4}) {
+  for (Integrator method :
+       {Integrator::euler, Integrator::semi_implicit, Integrator::rk4}) {
     Vec3 x(1, 2, 3), v(4, 5, 6);
     int calls = 0;
     const auto accel = [&](double, const Vec3&, const Vec3&) -> Vec3 {
-      if (++calls == 3 || method != SecondOrderMethod::rk4) throw std::runtime_error("boom");
+      if (++calls == 3 || method != Integrator::rk4) throw std::runtime_error("boom");
       return Vec3(1, 1, 1);
     };
     EXPECT_THROW(step(method, 0.0, x, v, 0.1, accel), std::runtime_error);
@@ -200,10 +200,10 @@ TEST(OdeFirstOrder, Vec3StateRotation) {
 }
 
 TEST(OdeMethods, NamesParse) {
-  EXPECT_EQ(parse_second_order_method("euler"), SecondOrderMethod::euler);
-  EXPECT_EQ(parse_second_order_method("semi_implicit"), SecondOrderMethod::semi_implicit);
-  EXPECT_EQ(parse_second_order_method("rk4"), SecondOrderMethod::rk4);
-  EXPECT_FALSE(parse_second_order_method("midpoint").has_value());
+  EXPECT_EQ(parse_integrator("euler"), Integrator::euler);
+  EXPECT_EQ(parse_integrator("semi_implicit"), Integrator::semi_implicit);
+  EXPECT_EQ(parse_integrator("rk4"), Integrator::rk4);
+  EXPECT_FALSE(parse_integrator("midpoint").has_value());
   EXPECT_EQ(parse_first_order_method("heun"), FirstOrderMethod::heun);
   EXPECT_EQ(parse_first_order_method("midpoint"), FirstOrderMethod::midpoint);
   EXPECT_FALSE(parse_first_order_method("RK4").has_value());
