@@ -281,7 +281,7 @@ class ContactConstraints {
   // contact_restitution.cpp
   void mark_supported(const Acceleration* acceleration);
   double impact_velocity(const Manifold& m, const Point& p) const;
-  double turned_target(const Manifold& m, const Point& p, double w, double a_n) const;
+  double turned_target(const Manifold& m, double w, double a_n) const;
   double normal_acceleration(const Manifold& m, const Point& p) const;
   bool start_round(bool first);
   double round_sweep(bool forward);

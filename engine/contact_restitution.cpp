@@ -110,7 +110,7 @@ double ContactConstraints::impact_velocity(const Manifold& m, const Point& p) co
 // normal, keeping what the bounce leaves alone across the normal now (the centres' relative
 // velocity is the normal velocity of the point up to the spins, which a central impulse
 // leaves alone).
-double ContactConstraints::turned_target(const Manifold& m, const Point& p, double w,
+double ContactConstraints::turned_target(const Manifold& m, double w,
                                          double a_n) const {
   // The centres' relative velocity: central impulses change only it (and the pair's kinetic
   // energy is that of the centre of mass plus ½ m_eff |v|² plus the unchanged spins).
@@ -209,7 +209,7 @@ bool ContactConstraints::start_round(bool first) {
         if (!(v < -landed_tolerance() / h_)) continue;
       }
       if (m.restitution > 0.0 && -w > threshold)
-        p.target = p.turned && first ? turned_target(m, p, w, a_n)
+        p.target = p.turned && first ? turned_target(m, w, a_n)
                                      : std::max(-m.restitution * w - 0.5 * a_n * h_, 0.0);
       p.flags |= event;
       any = true;
