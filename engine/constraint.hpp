@@ -48,13 +48,16 @@ struct JointRow {
 // no_body_id for a joint to the world.
 class Constraint {
  public:
-  Constraint(BodyId a, BodyId b) : a_(a), b_(b) {}
+  // `collide`: whether the two bodies still collide with each other (Box2D's collideConnected;
+  // off by default, as jointed parts usually touch where they are joined).
+  Constraint(BodyId a, BodyId b, bool collide = false) : a_(a), b_(b), collide_(collide) {}
   virtual ~Constraint() = default;
   Constraint(const Constraint&) = delete;
   Constraint& operator=(const Constraint&) = delete;
 
   BodyId body_a() const { return a_; }
   BodyId body_b() const { return b_; }
+  bool collide() const { return collide_; }
   // The number of rows: fixed while the joint is in a world (an inactive limit is still a row,
   // e.g. with a large C: it then never pushes).
   virtual int row_count() const = 0;
@@ -92,6 +95,7 @@ class Constraint {
   friend class Solver;
   friend class World;
   BodyId a_, b_;
+  bool collide_;
   std::vector<double> impulses_;
   Vec3 step_impulse_ = Vec3::Zero();
   Vec3 step_angular_impulse_ = Vec3::Zero();

@@ -159,6 +159,11 @@ class ContactConstraints {
  public:
   // A point's flag after the restitution stage: it was in an impact round.
   static constexpr std::uint8_t took_part_flag = 16;
+  // The body pairs that never collide (ContactPairs::excluded), set by the world.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>>& excluded_pairs() {
+    return pairs_.excluded();
+  }
+
   // ---- the stages (engine/solver.cpp calls them) ----
   // Finds the contacts at the bodies' present poses (slot i of `solver` is body i; slot
   // bodies.size() is the ground, for planes) and prepares their rows. `ids` names the bodies.

@@ -80,7 +80,11 @@ void ContactPairs::update(const std::vector<Body>& bodies, const std::vector<Bod
   drop_unseen();
   broad_phase_.update_pairs();
   pairs_.clear();
+  auto skip = excluded_.begin();
   for (const BroadPhasePair& p : broad_phase_.pairs()) {
+    const std::pair<std::uint64_t, std::uint64_t> keys{p.key_a, p.key_b};
+    while (skip != excluded_.end() && *skip < keys) ++skip;
+    if (skip != excluded_.end() && *skip == keys) continue;
     const SlotProxy& a = slots_[p.key_a >> 32];
     const SlotProxy& b = slots_[p.key_b >> 32];
     pairs_.push_back({a.index, b.index});

@@ -50,6 +50,10 @@ class ContactPairs {
   // for the step of length h) and finds the candidate pairs.
   void update(const std::vector<Body>& bodies, const std::vector<BodyId>& ids,
               const SolverBody* solver, double h, double speculative_distance);
+  // Pairs of bodies that never collide (joined by a joint that says so), by their proxy keys
+  // (key_of), each as (smaller, larger), sorted: update skips them in one merge with the broad
+  // phase's sorted pairs. Set again only when the joints change.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>>& excluded() { return excluded_; }
   // Sorted by (id of a, id of b); each pair once, never two static bodies.
   const std::vector<BodyPair>& pairs() const { return pairs_; }
   // Of body i in the last update (0 for a body without a shape): its bounding radius and how
@@ -87,6 +91,7 @@ class ContactPairs {
   std::vector<Reach> reach_;  // by body index
   std::vector<BodyPair> pairs_;
   std::uint64_t update_count_ = 0;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> excluded_;
 };
 
 }  // namespace rigidlab

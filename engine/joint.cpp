@@ -127,7 +127,7 @@ Joint::Frame Joint::frame(const Body& a, const Body* b) const {
 }
 
 Joint::Joint(const JointDef& def, const Body& a, const Body* b)
-    : Constraint(def.a, def.b), type_(def.type) {
+    : Constraint(def.a, def.b, def.collide), type_(def.type) {
   const std::string problem = joint_def_problem(def);
   if (!problem.empty()) throw std::invalid_argument(problem);
   const Quat qa = a.orientation, qb = b != nullptr ? b->orientation : Quat(Quat::Identity());

@@ -83,6 +83,7 @@ struct JointDef {
   double lower = -unbounded, upper = unbounded;  // limits of the driven coordinate
   std::optional<JointSpring> spring;
   std::optional<JointMotor> motor;
+  bool collide = false;  // whether a and b still collide with each other
 };
 
 // "" or the rule the definition breaks ("the axis must be a non-zero vector", "a ball joint

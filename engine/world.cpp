@@ -191,6 +191,19 @@ void World::resolve_ids() {
   joint_refs_.clear();
   for (const auto& j : joints_)
     joint_refs_.push_back({j.get(), index(j->body_a()), index(j->body_b())});
+  // Bodies joined by a joint without `collide` do not collide: the pairs to skip, made again
+  // only when a joint was added or removed (allocation then, none per step).
+  const std::pair<std::size_t, std::uint64_t> joints_now{joints_.size(), last_joint_serial_};
+  if (joints_now == excluded_for_) return;
+  auto& excluded = solver_.contact_constraints().excluded_pairs();
+  excluded.clear();
+  for (const auto& j : joints_) {
+    if (j->collide() || !j->body_b().valid()) continue;
+    const std::uint64_t a = ContactPairs::key_of(j->body_a()), b = ContactPairs::key_of(j->body_b());
+    excluded.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(excluded.begin(), excluded.end());
+  excluded_for_ = joints_now;
 }
 
 // 000_* "Particle system": at each evaluation sum every force acting on each body. The

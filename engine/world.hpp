@@ -202,6 +202,8 @@ class World {
   std::vector<SpringRef> spring_refs_;
   std::vector<std::size_t> drag_refs_;
   std::vector<Solver::JointRef> joint_refs_;
+  // The joints (count, last serial) the solver's excluded contact pairs were made for.
+  std::pair<std::size_t, std::uint64_t> excluded_for_{0, 0};
   // The undo of the step being taken: the bodies' states before it, the solver's memory.
   std::vector<BodyState> snapshot_;
   WorldState undo_;

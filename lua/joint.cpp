@@ -148,7 +148,8 @@ int world_add_joint(lua_State* L) {
   check_no_extra_args(L, 2);
   static const char* const fields[] = {"type",  "a",     "b",      "anchor",  "axis",
                                        "lower", "upper", "spring", "motor",   "pitch",
-                                       "a_point", "b_point", "min",  "max",   nullptr};
+                                       "a_point", "b_point", "min",  "max",   "collide",
+                                       nullptr};
   check_fields(L, 2, fields);
   JointDef def;
   lua_settop(L, 2);
@@ -199,6 +200,9 @@ int world_add_joint(lua_State* L) {
     if (!lua_istable(L, -1)) Where::field(2, "motor").type_error(L, lua_gettop(L), "table");
     def.motor = read_motor(L, lua_gettop(L), 2);
   }
+  lua_pop(L, 1);
+  if (get_field(L, 2, "collide") != LUA_TNIL)
+    def.collide = check_boolean(L, lua_gettop(L), Where::field(2, "collide"));
   lua_pop(L, 1);
   const bool has_anchor = get_field(L, 2, "anchor") != LUA_TNIL;  // 4
   lua_pop(L, 1);
@@ -381,6 +385,10 @@ void get_pitch(lua_State* L, int object, const Property& p) {
   lua_pushnumber(L, resolve(L, object, p.name).joint->pitch());
 }
 
+void get_collide(lua_State* L, int object, const Property& p) {
+  lua_pushboolean(L, resolve(L, object, p.name).joint->collide());
+}
+
 const char upper_marker = 0;  // Property::data of the second of a pair
 
 const Property properties[] = {
@@ -420,6 +428,10 @@ const Property properties[] = {
     {"upper", get_limit, nullptr, "the upper limit (math.huge: none)", "use j:set_limits",
      &upper_marker},
     {"pitch", get_pitch, nullptr, "m per turn (screw joints; 0 for others)",
+     "it is chosen at creation", nullptr},
+    {"collide", get_collide, nullptr,
+     "whether a and b still collide with each other (default false: jointed parts often touch "
+     "where they are joined)",
      "it is chosen at creation", nullptr},
     {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}};
 
@@ -522,7 +534,8 @@ const Entry world_methods[] = {
      "holds the relation they have at creation. lower/upper limit the coordinate; spring =\n"
      "{hertz =, damping_ratio =, rest =}; motor = {target =, target_rate =, kp =, kv =,\n"
      "max_torque =}. Distance: a_point, b_point (body frames; for the world a world point),\n"
-     "min, max (a rope). help(\"joint\") lists the joint's fields."},
+     "min, max (a rope). collide (default false): whether a and b still collide with each\n"
+     "other. help(\"joint\") lists the joint's fields."},
     {"remove_joint", world_remove_joint, "world:remove_joint", "w:remove_joint(j)",
      "Removes the joint. Removing a body removes its joints too."},
     {"joints", world_joints, "world:joints", "w:joints() -> {joint, ...}",

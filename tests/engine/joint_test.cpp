@@ -125,11 +125,10 @@ TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
   }
   std::printf("chain: worst joint error %.3g m, energy %.6g -> highest %.6g (start %.6g)\n",
               worst, w.energy(), highest, e0);
-  // NOT YET the 1 mm with the boxes' shapes: 3.1 mm (3.9 mm with Gauss-Seidel alone).
-  // The joints' own solve now leaves 0.06 mm (the same links without shapes,
-  // tests/engine/joint_chain_test.cpp); what remains are the contacts between joined links,
-  // whose boxes touch end to end at every joint and push against the joints as they turn.
-  EXPECT_LT(worst, 3.5e-3);
+  // The 1 mm: 0.058 mm with the joint trees' exact solve (engine/joint_tree.hpp), now
+  // that the joined boxes, which touch end to end at every joint, no longer collide (a joint's
+  // `collide` is off by default); with their contacts fighting the joints it was 3.1 mm.
+  EXPECT_LT(worst, 1e-3);
   // Energy is measured from its size: the chain's potential energy is negative (below the
   // pivot), so "rising by 1 %" is 1 % of the kinetic energy it can reach, |E0|.
   EXPECT_LE(highest - e0, 0.01 * std::abs(e0));
