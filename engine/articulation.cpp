@@ -211,6 +211,11 @@ Eigen::VectorXd Articulation::virtual_force(int link, const Vec3& point, const V
 
 Vec3 Articulation::link_position(int link) { return point_position(link, Vec3::Zero()); }
 
+Vec3 Articulation::link_com(int link) {
+  check_link(link);
+  return point_position(link, model_.links()[static_cast<std::size_t>(link)].spec.com);
+}
+
 Mat3 Articulation::link_rotation(int link) {
   check_link(link);
   update_kinematics();

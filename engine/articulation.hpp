@@ -116,6 +116,7 @@ class Articulation {
   Eigen::VectorXd virtual_force(int link, const Vec3& point, const Vec3& force,
                                 const Vec3& torque = Vec3::Zero());
   Vec3 link_position(int link);  // the link frame's origin (the joint), world
+  Vec3 link_com(int link);       // the link's centre of mass, world
   Mat3 link_rotation(int link);  // link to world
   Vec3 point_position(int link, const Vec3& point);
   Vec3 point_velocity(int link, const Vec3& point);

@@ -276,7 +276,7 @@ void ArticulationRecorder::sample(Articulation& art) {
     const int link = static_cast<int>(k);
     put(poses_, art.link_position(link));
     put(poses_, Quat(art.link_rotation(link)));
-    put(poses_, art.point_position(link, art.model().links()[k].spec.com));
+    put(poses_, art.link_com(link));
     put(poses_, art.angular_velocity(link));
   }
 }

@@ -88,7 +88,7 @@ void extend_trails(lua_State* L, int object, std::vector<std::vector<Vec3>>& tra
   } else {
     Articulation& a = check_articulation(L, object).art;
     for (int i = 0; i < a.model().link_count(); ++i)
-      points.push_back(a.point_position(i, a.model().links()[i].spec.com));
+      points.push_back(a.link_com(i));
   }
   trails.resize(std::max(trails.size(), points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) trails[i].push_back(points[i]);

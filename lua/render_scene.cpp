@@ -196,7 +196,7 @@ present::Scene scene_from_articulation(Articulation& art, const SceneRequest& re
   std::vector<double> lengths;
   for (int i = 0; i < n; ++i) {
     joints[i] = art.link_position(i);
-    coms[i] = art.point_position(i, model.links()[i].spec.com);
+    coms[i] = art.link_com(i);
     omegas[i] = art.angular_velocity(i);
   }
   for (int i = 0; i < n; ++i) {

@@ -54,7 +54,7 @@ struct ArticulationTraits {
     a.save_state(to.state);
     to.coms.resize(static_cast<std::size_t>(a.model().link_count()));
     for (std::size_t i = 0; i < to.coms.size(); ++i)
-      to.coms[i] = a.point_position(static_cast<int>(i), a.model().links()[i].spec.com);
+      to.coms[i] = a.link_com(static_cast<int>(i));
   }
   static void restore(Articulation& a, const SavedArticulation& from) {
     a.restore_state(from.state);
