@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace rigidlab {
 namespace {
@@ -34,7 +35,7 @@ struct ClipVertex {
   Vec3 p;
   std::uint32_t id;
 };
-constexpr int max_clip_vertices = 8;  // a quad clipped by four planes gains at most four
+constexpr int max_clip_vertices = max_face_points;
 
 // Sutherland–Hodgman against one plane: keeps the part of the convex polygon `in` where
 // dir·p ≤ limit. Returns the number of vertices written to `out`. A vertex within `tolerance`
@@ -58,10 +59,36 @@ int clip_polygon(const ClipVertex* in, int count, ClipVertex* out, const Vec3& d
   return written;
 }
 
-// Keeps four of `count` > 4 points of one face contact: the deepest, the one farthest from it
-// across the face, the one making the largest triangle with those two, and the one making the
-// largest triangle on the other side of their edge (Gregorius, GDC 2015). Distances and areas
-// are measured in the contact plane.
+// Removes the vertices of a clipped face (in the polygon's order) where its boundary turns by
+// less than 1e-6 rad: such a vertex lies on the segment between its neighbours (to rounding)
+// and holds nothing they do not (the gap is linear along an edge, so it is never deeper than
+// both). They arise where an incident edge crosses a reference side plane at a tiny angle:
+// two equal boxes stacked face on face with a yaw θ between them overlap in an octagon whose
+// four extra vertices lie mid-edge, turning by θ. With θ ~ 1e-8 (rounding), which of a
+// corner and its edge's mid point is "deepest" is decided by rounding, and reduce_to_four,
+// starting from the deepest, kept a mid-edge point instead of a corner: the box above rested
+// on three corners and a mid point, lost the warm start of the fourth, and a column of 20
+// boxes under sequential_impulses toppled. Returns the number left (all of them when fewer
+// than three would be: a degenerate sliver is left to reduce_to_four as it is).
+int drop_straight_vertices(ContactPoint* points, int count, const Vec3& n) {
+  bool straight[max_clip_vertices] = {};
+  for (int k = 0; k < count; ++k) {
+    const Vec3& prev = points[(k + count - 1) % count].point;
+    const Vec3& next = points[(k + 1) % count].point;
+    const Vec3 in = points[k].point - prev, out = next - points[k].point;
+    straight[k] = std::abs(in.cross(out).dot(n)) <= 1e-6 * in.norm() * out.norm();
+  }
+  int written = 0;
+  for (int k = 0; k < count; ++k)
+    if (!straight[k]) points[written++] = points[k];
+  return written >= 3 ? written : count;
+}
+
+// Keeps at most four of the `count` points of one face contact, in this order: the deepest,
+// the one farthest from it across the face, the one making the largest triangle with those
+// two, and the one making the largest triangle on the other side of their edge (Gregorius,
+// GDC 2015). Distances and areas are measured in the contact plane. On four points of a
+// convex quad it keeps all four (ordered so), on three a triangle.
 void reduce_to_four(const ContactPoint* points, int count, Manifold& m) {
   const Vec3& n = m.normal;
   auto in_plane = [&n](const Vec3& v) -> Vec3 { return v - n.dot(v) * n; };
@@ -75,17 +102,26 @@ void reduce_to_four(const ContactPoint* points, int count, Manifold& m) {
     const double d2 = in_plane(points[k].point - p0).squaredNorm();
     if (d2 > farthest) farthest = d2, second = k;
   }
-  const Vec3 edge = points[second].point - p0;
-  auto area = [&](int k) { return edge.cross(points[k].point - p0).dot(n); };
+  // Twice the signed area of the triangle (i, j, k) in the contact plane.
+  auto area = [&](int i, int j, int k) {
+    return (points[j].point - points[i].point).cross(points[k].point - points[i].point).dot(n);
+  };
   int third = first;
   double largest = -1.0;
   for (int k = 0; k < count; ++k)
-    if (std::abs(area(k)) > largest) largest = std::abs(area(k)), third = k;
-  const double side = sign_of(area(third));
+    if (std::abs(area(first, second, k)) > largest)
+      largest = std::abs(area(first, second, k)), third = k;
+  const double side = sign_of(area(first, second, third));
+  // The fourth: the largest triangle outside the edge first-second; when first-second is an
+  // edge of the polygon (a point adjacent to the deepest can be the farthest, in a kite),
+  // outside the triangle's other two edges instead, so that a quad keeps its four corners.
   int fourth = -1;
   double opposite = 0.0;
-  for (int k = 0; k < count; ++k)
-    if (-side * area(k) > opposite) opposite = -side * area(k), fourth = k;
+  for (const auto& [i, j] : {std::pair{first, second}, {second, third}, {third, first}}) {
+    for (int k = 0; k < count; ++k)
+      if (-side * area(i, j, k) > opposite) opposite = -side * area(i, j, k), fourth = k;
+    if (fourth >= 0) break;
+  }
   m.count = 0;
   for (int k : {first, second, third, fourth})
     if (k >= 0) m.points[m.count++] = points[k];
@@ -129,8 +165,6 @@ Manifold face_contact(const Pose& ref, const Vec3& ref_half, int axis, const Vec
                          static_cast<std::uint32_t>(plane));
     std::swap(polygon, scratch);
   }
-  Manifold m;
-  m.normal = ref_normal;
   const std::uint32_t seed =
       mix(feature_seed, static_cast<std::uint32_t>(2 * face + (face_sign > 0)));
   const Vec3 ref_center = ref.position + ref_half[axis] * ref_normal;
@@ -141,13 +175,7 @@ Manifold face_contact(const Pose& ref, const Vec3& ref_half, int axis, const Vec
     if (gap <= margin)
       kept[kept_count++] = {polygon[k].p - 0.5 * gap * ref_normal, -gap, mix(seed, polygon[k].id)};
   }
-  if (kept_count <= max_manifold_points) {
-    for (int k = 0; k < kept_count; ++k) m.points[k] = kept[k];
-    m.count = kept_count;
-  } else {
-    reduce_to_four(kept, kept_count, m);
-  }
-  return m;
+  return reduce_face_points(kept, kept_count, ref_normal);
 }
 
 // One point where edge `edge_a` of a crosses edge `edge_b` of b, n the separating axis from a
@@ -183,6 +211,21 @@ Manifold flipped(Manifold m) {
 }
 
 }  // namespace
+
+Manifold reduce_face_points(ContactPoint* points, int count, const Vec3& normal) {
+  Manifold m;
+  m.normal = normal;
+  if (count <= max_manifold_points) {
+    for (int k = 0; k < count; ++k) m.points[k] = points[k];
+    m.count = count;
+  } else {
+    // The straight vertices go before the reduction, which then orders what is left as it
+    // would have among all (a solver sweeping the points in that order sees the same order
+    // whether or not a mid-edge point was there: issue 13's pyramid stands as before).
+    reduce_to_four(points, drop_straight_vertices(points, count, normal), m);
+  }
+  return m;
+}
 
 double bounding_radius(const Shape& shape) {
   switch (shape.kind) {

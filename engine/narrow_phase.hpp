@@ -56,6 +56,15 @@ struct Manifold {
   std::array<ContactPoint, max_manifold_points> points;
 };
 
+// The points of one face contact as a manifold of at most four, `normal` its normal: `points`
+// (count <= max_face_points) are the vertices of the clipped face in the order of its
+// boundary. Up to four are kept as they are; of more, the vertices where the boundary turns
+// by less than 1e-6 rad are dropped (they lie between their neighbours), then four are kept
+// (Gregorius, GDC 2015): the deepest, the farthest from it, the largest triangle with those
+// two, the largest triangle outside it (engine/narrow_phase.cpp). Reorders `points`.
+inline constexpr int max_face_points = 8;  // a quad clipped by four planes gains at most four
+Manifold reduce_face_points(ContactPoint* points, int count, const Vec3& normal);
+
 // Radius of the sphere about the centre that holds the shape (m); 0 for no shape.
 double bounding_radius(const Shape& shape);
 

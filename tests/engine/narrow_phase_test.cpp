@@ -220,40 +220,122 @@ TEST(BoxBox, ReferenceFaceOnBFlipsTheNormalBackToAtoB) {
       EXPECT_NEAR(m.points[find_point(m, Vec3(x, 0.95, z))].depth, 0.1, 1e-14);
 }
 
-TEST(BoxBox, OctagonIsReducedToFourSpreadPoints) {
-  // B's bottom face, turned 45° about y, is a square with corners √2 from the centre; clipped
-  // by A's top face (|x|, |z| <= 1) it is an octagon with corners like (1, √2 − 1). Four are
-  // kept: they must be corners of that octagon, all 0.1 deep, and span at least the square
-  // between alternate corners (area 2 (√2 − 1)... measured as half the octagon's area).
-  const Manifold m =
-      collide_box_box(pose(Vec3::Zero()), Vec3(1, 1, 1),
-                      pose(Vec3(0, 1.4, 0), about(Vec3(0, 1, 0), M_PI / 4)), Vec3(1, 0.5, 1));
-  ASSERT_EQ(m.count, 4);
-  const double c = sqrt2 - 1.0;
-  std::vector<Vec3> octagon;
-  for (double s1 : {-1.0, 1.0})
-    for (double s2 : {-1.0, 1.0}) {
-      octagon.emplace_back(s1, 0.95, s2 * c);
-      octagon.emplace_back(s1 * c, 0.95, s2);
-    }
-  for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(m.points[k].depth, 0.1, 1e-14);
-    const bool on_octagon = std::any_of(octagon.begin(), octagon.end(), [&](const Vec3& v) {
-      return (v - m.points[k].point).norm() < 1e-12;
-    });
-    EXPECT_TRUE(on_octagon) << m.points[k].point.transpose();
-  }
-  // Area of the kept quadrilateral (shoelace in x-z after sorting by angle).
+// Twice the area of the polygon the points of m span in the plane normal to y (shoelace after
+// sorting by angle about their centroid).
+double twice_area_about_y(const Manifold& m) {
   std::vector<Vec3> quad;
-  for (const ContactPoint& p : m.points) quad.emplace_back(p.point.x(), 0.0, p.point.z());
+  Vec3 centroid = Vec3::Zero();
+  for (int k = 0; k < m.count; ++k) centroid += m.points[k].point / m.count;
+  for (int k = 0; k < m.count; ++k) quad.push_back(m.points[k].point - centroid);
   std::sort(quad.begin(), quad.end(), [](const Vec3& p, const Vec3& q) {
     return std::atan2(p.z(), p.x()) < std::atan2(q.z(), q.x());
   });
   double area = 0;
-  for (int k = 0; k < 4; ++k)
-    area += quad[k].x() * quad[(k + 1) % 4].z() - quad[(k + 1) % 4].x() * quad[k].z();
-  const double octagon_area = 4.0 - 2.0 * (1.0 - c) * (1.0 - c);
-  EXPECT_GT(std::abs(area) / 2, 0.5 * octagon_area);
+  for (std::size_t k = 0; k < quad.size(); ++k) {
+    const Vec3& p = quad[k];
+    const Vec3& q = quad[(k + 1) % quad.size()];
+    area += p.z() * q.x() - p.x() * q.z();
+  }
+  return std::abs(area);
+}
+
+TEST(BoxBox, TwistedSquaresOverlapInTheExactOctagon) {
+  // B's bottom face (half 1) turned by θ about y over A's top face (|x|, |z| <= 1): the edges
+  // of B are the lines p·u = ±1, p·w = ±1 with u = (cos θ, −sin θ), w = (sin θ, cos θ) in
+  // (x, z). On A's side x = 1 they cross at z = (cos θ − 1)/sin θ = −tan(θ/2) and
+  // z = (1 − sin θ)/cos θ = tan(π/4 − θ/2); the octagon is these two turned by multiples of
+  // 90°, and its area is A's square less four corner triangles: 4 − 2 (1 − t₁)(1 − t₂). The
+  // four points kept are vertices of it, all 0.1 deep, spanning more than half of it. (For
+  // 0 < θ < π/2; at θ = π/4 it is the regular octagon with corners like (1, √2 − 1).)
+  for (double theta : {0.3, M_PI / 4, 0.7, 1.2}) {
+    const Manifold m =
+        collide_box_box(pose(Vec3::Zero()), Vec3(1, 1, 1),
+                        pose(Vec3(0, 1.4, 0), about(Vec3(0, 1, 0), theta)), Vec3(1, 0.5, 1));
+    ASSERT_EQ(m.count, 4);
+    const double t1 = -std::tan(theta / 2), t2 = std::tan(M_PI / 4 - theta / 2);
+    std::vector<Vec3> octagon;
+    for (const Vec3& v : {Vec3(1, 0.95, t1), Vec3(1, 0.95, t2)})
+      for (int quarter = 0; quarter < 4; ++quarter)
+        octagon.push_back(about(Vec3(0, 1, 0), quarter * M_PI / 2) * v);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR(m.points[k].depth, 0.1, 1e-14);
+      const bool on_octagon = std::any_of(octagon.begin(), octagon.end(), [&](const Vec3& v) {
+        return (v - m.points[k].point).norm() < 1e-12;
+      });
+      EXPECT_TRUE(on_octagon) << "theta " << theta << ": " << m.points[k].point.transpose();
+    }
+    const double octagon_area = 4.0 - 2.0 * (1.0 - std::abs(t1)) * (1.0 - t2);
+    EXPECT_GT(twice_area_about_y(m) / 2, 0.5 * octagon_area) << "theta " << theta;
+  }
+}
+
+// The octagon of two equal squares twisted by θ = 1e-8 (what rounding leaves between boxes
+// stacked face on face): near each corner of A's face a vertex, and on each side a vertex
+// where B's edge crosses it, turning the boundary by θ (see the test above, with
+// t₁ = −tan(θ/2), t₂ = tan(π/4 − θ/2)); in boundary order.
+std::vector<ContactPoint> twisted_octagon(double theta, const Vec3& deeper) {
+  const double t1 = -std::tan(theta / 2), t2 = std::tan(M_PI / 4 - theta / 2);
+  std::vector<ContactPoint> points;
+  for (int quarter = 0; quarter < 4; ++quarter)
+    for (const Vec3& v : {Vec3(1, 0, t1), Vec3(1, 0, t2)}) {
+      const Vec3 p = about(Vec3(0, 1, 0), -quarter * M_PI / 2) * v;
+      points.push_back({p, 0.1 + deeper.dot(p), static_cast<std::uint32_t>(points.size())});
+    }
+  return points;
+}
+
+TEST(ReduceFacePoints, NearlyStraightVerticesGiveWayToTheCorners) {
+  // The depth slopes by 1e-3 towards x, slightly against z (by θ/2): the crossing on the side
+  // x = 1, at z = −θ/2, is then the deepest vertex, by ~1e-11 m, over the corner (1, 1 − θ).
+  // Kept from it, it took a corner's place (the column of 20 boxes toppled): the four kept
+  // must be the corners (within θ), the full square (area 4).
+  const double theta = 1e-8;
+  std::vector<ContactPoint> octagon = twisted_octagon(theta, 1e-3 * Vec3(1, 0, -theta / 2));
+  ASSERT_EQ(octagon.size(), 8u);
+  const Manifold m = reduce_face_points(octagon.data(), 8, Vec3(0, 1, 0));
+  ASSERT_EQ(m.count, 4);
+  for (int k = 0; k < 4; ++k) {
+    const Vec3& p = m.points[k].point;
+    EXPECT_NEAR(std::abs(p.x()), 1.0, 2 * theta) << p.transpose();
+    EXPECT_NEAR(std::abs(p.z()), 1.0, 2 * theta) << p.transpose();
+  }
+  EXPECT_NEAR(twice_area_about_y(m) / 2, 4.0, 1e-7);
+}
+
+TEST(ReduceFacePoints, KeepsFourCornersWhenTheFarthestIsANeighbour) {
+  // A flat pentagon, deepest at (0, 0): the farthest point from it, (10, 0), is its
+  // neighbour, so no point lies beyond their edge; the fourth comes from beyond the other
+  // edges of the triangle. The largest quads of the five points (brute force) have area 6.2.
+  const double xz[5][2] = {{0, 0}, {10, 0}, {9.9, 0.5}, {5, 1}, {0.1, 0.5}};
+  ContactPoint points[5];
+  for (int k = 0; k < 5; ++k)
+    points[k] = {Vec3(xz[k][0], 0, xz[k][1]), k == 0 ? 0.2 : 0.1, static_cast<std::uint32_t>(k)};
+  const Manifold m = reduce_face_points(points, 5, Vec3(0, 1, 0));
+  ASSERT_EQ(m.count, 4);
+  EXPECT_NEAR(twice_area_about_y(m) / 2, 6.2, 1e-12);
+}
+
+TEST(ReduceFacePoints, RegularHexagonKeepsItsLargestQuad) {
+  // Of a regular hexagon of circumradius 1 the largest quad is a rectangle 1 × √3 (area √3,
+  // against 3√3/4 for half the hexagon), whichever vertex is the deepest.
+  for (int deepest = 0; deepest < 6; ++deepest) {
+    ContactPoint points[6];
+    for (int k = 0; k < 6; ++k)
+      points[k] = {Vec3(std::cos(k * M_PI / 3), 0, std::sin(k * M_PI / 3)),
+                   k == deepest ? 0.2 : 0.1, static_cast<std::uint32_t>(k)};
+    const Manifold m = reduce_face_points(points, 6, Vec3(0, 1, 0));
+    ASSERT_EQ(m.count, 4);
+    EXPECT_EQ(m.points[0].feature, static_cast<std::uint32_t>(deepest));
+    EXPECT_NEAR(twice_area_about_y(m) / 2, std::sqrt(3.0), 1e-12) << "deepest " << deepest;
+  }
+}
+
+TEST(ReduceFacePoints, FourOrFewerAreKeptAsTheyAre) {
+  ContactPoint points[3] = {{Vec3(0, 0, 0), 0.1, 7}, {Vec3(1, 0, 0), 0.3, 8}, {Vec3(0, 0, 1), 0.2, 9}};
+  const Manifold m = reduce_face_points(points, 3, Vec3(0, 1, 0));
+  ASSERT_EQ(m.count, 3);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(m.points[k].feature, 7u + k);
+  expect_vec(m.normal, Vec3(0, 1, 0));
 }
 
 TEST(BoxBox, CrossedEdgesGiveOnePoint) {
