@@ -155,6 +155,16 @@ inline bool touched(const ContactInfo& c) { return c.depth >= 0.0 || c.normal_im
 //             left to the next step.
 enum class NormalMode { velocity, push, relax };
 
+// One round of the restitution stage of the last substep, as it ran (for tests and reports):
+// how many manifolds it swept, the sweeps it was allowed and did, and the manifold solves it
+// spent (counted where round_sweep solves one).
+struct RestitutionRound {
+  std::uint32_t manifolds = 0;
+  int allowed_sweeps = 0, sweeps = 0;
+  long solves = 0;
+  bool bounces = false;  // some target > 0 (a bounce), else landings only
+};
+
 class ContactConstraints {
  public:
   // A point's flag after the restitution stage: it was in an impact round.
@@ -187,6 +197,8 @@ class ContactConstraints {
 
   // ---- bookkeeping ----
   std::size_t point_count() const { return points_.size(); }
+  // The restitution rounds of the last substep that had any (at most 32).
+  const std::vector<RestitutionRound>& restitution_rounds() const { return rounds_; }
   // Every point of the last step (touched and speculative), ordered by body a, then body b or
   // plane, then feature.
   const std::vector<ContactInfo>& contacts() const { return contacts_; }
@@ -315,6 +327,8 @@ class ContactConstraints {
   std::vector<unsigned char> held_;  // per body: pushed by a contact that keeps its impulse
   std::vector<std::uint32_t> round_manifolds_;  // the manifolds a restitution round sweeps
   bool bounces_ = false;  // the present round has a bounce (a target > 0)
+  std::vector<RestitutionRound> rounds_;  // of the last restitution stage
+  long round_solves_ = 0;                 // counted by round_sweep
   std::vector<Vec3> start_velocity_, start_angular_velocity_;  // u before warm starting
   // The last step's points, sorted (warm starting), and the one being built.
   std::vector<ContactInfo> contacts_;

@@ -150,6 +150,7 @@ double ContactConstraints::round_sweep(bool forward) {
       before[i] = p.round_impulse;
     }
     if (!any) continue;
+    ++round_solves_;
     Vec4 start;
     const bool block =
         m.block && (all ? solve_block(mi, blocks_[mi].rigid_inverse, blocks_[mi].rigid_projector,
@@ -224,6 +225,8 @@ void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acc
   solver_ = solver;
   acceleration_ = acceleration;
   take_back_speculative();
+  rounds_.clear();
+  rounds_.reserve(max_rounds);
   const double tolerance = touch_tolerance();
   bool landings = false;
   for (const Manifold& m : manifolds_)
@@ -262,8 +265,14 @@ void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acc
                                                      settings_->iterations,
                                                      ContactSettings::max_iterations))
                  : settings_->iterations;
+    RestitutionRound record;
+    record.manifolds = static_cast<std::uint32_t>(size);
+    record.allowed_sweeps = sweeps;
+    record.bounces = bounces_;
+    round_solves_ = 0;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       if (poll != nullptr) poll->tick(round_manifolds_.size());
+      ++record.sweeps;
       const double change = round_sweep(sweep % 2 == 0);
       double largest = 0.0;
       for (std::uint32_t mi : round_manifolds_) {
@@ -273,6 +282,8 @@ void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acc
       }
       if (!(change > 1e-12 * largest)) break;
     }
+    record.solves = round_solves_;
+    rounds_.push_back(record);
     for (Point& p : points_) {
       p.restitution_impulse += p.round_impulse;
       if (in_round(p.flags)) p.flags |= took_part;

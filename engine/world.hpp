@@ -127,6 +127,10 @@ class World {
   const std::vector<ContactInfo>& contacts() const { return solver_.contacts(); }
   // The largest constraint velocity error after each solver sweep of the last substep.
   const std::vector<double>& solver_report() const { return solver_.report(); }
+  // The restitution rounds of the last substep (engine/contact_constraints.hpp).
+  const std::vector<RestitutionRound>& restitution_rounds() const {
+    return solver_.contact_constraints().restitution_rounds();
+  }
 
   // ---- time ----
   // Advances `count` steps of dt (s, finite and > 0), each in substeps() equal substeps of the
