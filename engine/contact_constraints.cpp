@@ -167,6 +167,7 @@ void ContactConstraints::take_back_speculative() {
 // See the header ("Lever arms after the positions moved").
 void ContactConstraints::positions_moved(SolverBody* solver) {
   solver_ = solver;
+  relax_rows_.ready = false;
   const double tolerance = landed_tolerance();
   for (std::size_t mi = 0; mi < manifolds_.size(); ++mi) {
     Manifold& m = manifolds_[mi];
@@ -407,18 +408,25 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
     residual[i] = residual_in[i];
   }
   auto upper = [&](int i) { return cap != nullptr ? cap[i] : unbounded; };
+  int taking[max_manifold_points], taken = 0;  // the active rows, in order
+  for (int i = 0; i < count; ++i)
+    if (active[i]) taking[taken++] = i;
   for (int pass = 0; pass <= count; ++pass) {
     if (pass > 0 || first == nullptr) {
       int index[max_manifold_points], n = 0;
-      for (int i = 0; i < count; ++i)
-        if (active[i] && !held[i]) index[n++] = i;
+      double kept[max_manifold_points];  // λ of each active row, less λ' of a held one
+      for (int t = 0; t < taken; ++t) {
+        const int j = taking[t];
+        kept[t] = held[j] ? old[j] - next[j] : old[j];
+        if (!held[j]) index[n++] = j;
+      }
       Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
       Eigen::Vector4d right = Eigen::Vector4d::Zero();
       for (int r = 0; r < n; ++r) {
         const int i = index[r];
-        right[r] = -residual[i];
-        for (int j = 0; j < count; ++j)
-          if (active[j]) right[r] += k(i, j) * (held[j] ? old[j] - next[j] : old[j]);
+        double sum = -residual[i];
+        for (int t = 0; t < taken; ++t) sum += k(i, taking[t]) * kept[t];
+        right[r] = sum;
         for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
         matrix(r, r) += gamma[i];
       }
@@ -467,9 +475,10 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   bool active[max_manifold_points];
   bool all_active = true, solved = true;
   double largest = 0.0;
+  const ModeRow* rows = mode_rows(mode).rows.data() + m.first;
   for (std::uint32_t i = 0; i < m.count; ++i) {
     Point& p = points_[m.first + i];
-    active[i] = normal_bias(m, p, mode, bias[i], soft[i]);
+    active[i] = rows[i].active;
     cap[i] = mode == NormalMode::relax ? p.relax_cap : unbounded;
     gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
     if (!active[i]) {
@@ -479,11 +488,13 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     }
     const double velocity = row_velocity(p.normal, a, b);
     const double impulse = impulse_of(p, which);
-    const double error = velocity + bias[i];
-    largest = std::max(largest, impulse > 0.0 ? std::abs(error) : -std::min(error, 0.0));
     // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
-    // for all the points of a manifold: they share their softness).
-    residual[i] = velocity + bias[i] / soft[i].mass_scale;
+    // for all the points of a manifold: they share their softness): offset = bias/mass_scale.
+    residual[i] = velocity + rows[i].offset;
+    // The error, velocity + bias, is the residual for the rigid modes (mass_scale 1); the
+    // push mode's is not reported (sweep).
+    const double error = residual[i];
+    largest = std::max(largest, impulse > 0.0 ? std::abs(error) : -std::min(error, 0.0));
     solved = solved && impulse == 0.0 && residual[i] >= 0.0;
   }
   if (solved) return largest;
@@ -504,6 +515,7 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   for (std::uint32_t i = 0; i < m.count; ++i) {
     if (!active[i]) continue;
     Point& p = points_[m.first + i];
+    normal_bias(m, p, mode, bias[i], soft[i]);
     ConstraintRow row = p.normal;  // the row with this mode's impulse and bounds
     row.impulse = impulse_of(p, which);
     row.upper = cap[i];
@@ -513,8 +525,23 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   return largest;
 }
 
+void ContactConstraints::prepare_mode(NormalMode mode) {
+  std::vector<ModeRow>& rows = mode_rows(mode).rows;
+  rows.resize(points_.size());
+  for (const Manifold& m : manifolds_)
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      double bias;
+      Softness soft;
+      rows[k].active = normal_bias(m, points_[k], mode, bias, soft);
+      rows[k].offset = rows[k].active ? bias / soft.mass_scale : 0.0;
+    }
+  mode_rows(mode).ready = true;
+}
+
 double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forward,
                                  SolverBody* push) {
+  if (!mode_rows(mode).ready) prepare_mode(mode);
+  if (push != nullptr && !push_rows_.ready) prepare_mode(NormalMode::push);
   const std::size_t n = manifolds_.size();
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -681,6 +708,7 @@ void ContactConstraints::body_removed(BodyId id) {
   contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), involves), contacts_.end());
   manifolds_.clear();
   points_.clear();
+  velocity_rows_.ready = push_rows_.ready = relax_rows_.ready = false;
 }
 
 }  // namespace rigidlab

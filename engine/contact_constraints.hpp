@@ -285,6 +285,9 @@ class ContactConstraints {
   void take_back_speculative();
   bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
                    Softness& soft) const;
+  // normal_bias of every point for `mode`, as the block form takes it (below), made once per
+  // stage instead of once per sweep: the biases depend on the gaps, fixed within a stage.
+  void prepare_mode(NormalMode mode);
   void solve_friction(Manifold& m, bool forward);
   double solve_normals(std::size_t manifold, NormalMode mode);
   // Which impulse of a point a block solve accumulates.
@@ -322,6 +325,22 @@ class ContactConstraints {
   std::vector<Manifold> manifolds_;
   std::vector<Point> points_;
   std::vector<Block> blocks_;  // by manifold
+  // Per NormalMode, per point (prepare_mode): whether its normal row takes part, and its
+  // residual offset bias/mass_scale (r = J v + offset, engine/contact_constraints.cpp
+  // solve_normals). Valid while `ready`: find and positions_moved change the gaps.
+  struct ModeRow {
+    double offset;
+    bool active;
+  };
+  struct ModeRows {
+    std::vector<ModeRow> rows;
+    bool ready = false;
+  };
+  ModeRows velocity_rows_, push_rows_, relax_rows_;
+  ModeRows& mode_rows(NormalMode mode) {
+    return mode == NormalMode::velocity ? velocity_rows_
+                                        : mode == NormalMode::push ? push_rows_ : relax_rows_;
+  }
   // Restitution: per body, whether a resting contact supports it; its velocity then.
   std::vector<unsigned char> supported_;
   std::vector<unsigned char> held_;  // per body: pushed by a contact that keeps its impulse
