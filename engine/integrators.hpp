@@ -159,8 +159,10 @@ std::size_t rk4_step(std::vector<Body>& bodies, const Vec3& gravity, double t, d
 // velocity stage; allocates only when the number of bodies grows).
 struct StageWorkspace {
   std::vector<Vec3> lead, angular_lead;  // end velocity − u of the free motion (m/s, rad/s)
-  // gyroscopic = conserving: each body's free rotation of the step (engine/free_rotation.hpp),
-  // applied exactly by the position stage when no constraint changed ω.
+  // gyroscopic = conserving (`conserving` true, Euler family): each body's free rotation of
+  // the step (engine/free_rotation.hpp), applied exactly by the position stage when no
+  // constraint changed ω.
+  bool conserving = false;
   std::vector<FreeRotation> turns;
   std::vector<Vec3> free_velocity, free_angular_velocity;  // rk4: u before the solve
 };
@@ -180,6 +182,14 @@ std::size_t position_stage(Integrator integrator, GyroscopicTerm gyroscopic,
                            const SolverBody* solver, const SolverBody* push, StageWorkspace& ws,
                            Rk4Workspace& rk4,
                            const std::function<void(double t)>& evaluate_forces);
+// The orientation the position stage gives body i (the body as it was before the step,
+// `b`) when the solver leaves it the angular velocity ω (world, rad/s), pushes left out: the
+// constraint solver's look-ahead (engine/solver.cpp), so that its rows are built for the pose
+// the integrator reaches. exp(h ω) q, or with `ws.conserving` exp(h (ω − ω_free)) ΔR q
+// (finish_rotation, engine/free_rotation.hpp).
+Quat orientation_after(const StageWorkspace& ws, const Body& b, std::size_t i, const Vec3& omega,
+                       double h);
+
 // After relax and restitution changed u: the end-of-step velocities, solved u + lead. Returns
 // the first body whose velocities are not finite, or all_finite.
 std::size_t finish_stage(std::vector<Body>& bodies, const SolverBody* solver,

@@ -47,6 +47,7 @@
 #include "engine/constraint.hpp"
 #include "engine/constraint_row.hpp"
 #include "engine/contact_constraints.hpp"
+#include "engine/integrators.hpp"
 #include "engine/joint_tree.hpp"
 #include "engine/solver_settings.hpp"
 #include "engine/step_poll.hpp"
@@ -58,6 +59,10 @@ class Solver {
   SolverKind kind = SolverKind::soft_step;
   ContactSettings settings;
   StepPoll* poll = nullptr;  // World::step's stop check during a step, else null
+  // What the integrator's velocity stage left for its position stage (engine/integrators.hpp),
+  // by which the joints' look-ahead (build_rows_ahead) finds the pose the position stage
+  // reaches for given velocities; null: orientations turn by exp(h ω).
+  const StageWorkspace* stages = nullptr;
 
   // ---- the shared arrays (sized by begin; slot ground() is the planes' ground) ----
   void begin(std::size_t body_count);
@@ -165,8 +170,9 @@ class Solver {
   double solve_tree(const JointTree::Factor& f, bool push);
   double joint_bias(const Row& r) const;
   void prepare_oscillator(Row& r, const JointRow& spec) const;
-  void build_rows_ahead(Constraint& joint, const Body& a, const Body* b, const SolverBody& sa,
-                        const SolverBody& sb);
+  void build_rows_ahead(Constraint& joint, const Body& a, const Body* b, std::uint32_t a_slot,
+                        std::uint32_t b_slot);
+  Quat orientation_ahead(const Body& body, std::uint32_t slot) const;
   void correct_joint_positions(std::vector<Body>& bodies, const std::vector<JointRef>& joints);
 
   std::vector<SolverBody> bodies_;

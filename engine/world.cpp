@@ -258,6 +258,7 @@ std::size_t World::substep(double t, double h, BodyState* save_to) {
   solver_.begin(bodies.size());
   velocity_stage(integrator_, gyroscopic_, bodies, gravity_, h, solver_.bodies(),
                  solver_.accelerations(), stages_);
+  solver_.stages = &stages_;
   solver_.prepare(bodies, store_->ids(), planes_, joint_refs_, h);
   solver_.warm_start();
   solver_.solve();
