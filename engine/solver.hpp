@@ -174,6 +174,10 @@ class Solver {
                         std::uint32_t b_slot);
   Quat orientation_ahead(const Body& body, std::uint32_t slot) const;
   void correct_joint_positions(std::vector<Body>& bodies, const std::vector<JointRef>& joints);
+  void correct_block(const JointRow* rows, int size, Body& a, Body* b, const SolverBody& sa,
+                     const SolverBody& sb) const;
+  static void move_apart(const Jacobian& j, double lambda, Body& a, Body* b, const SolverBody& sa,
+                         const SolverBody& sb);
 
   std::vector<SolverBody> bodies_;
   std::vector<SolverBody> pushes_;

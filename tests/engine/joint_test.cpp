@@ -92,8 +92,9 @@ TEST(Pendulum, PeriodMatchesTheEllipticIntegralWithBothSolvers) {
 
 // Issue 14's chain: 10 boxes 0.1 × 0.5 × 0.1 m of 1 kg joined end to end by ball joints,
 // hanging from the world, released at 45°; 10 s at 60 Hz with the defaults.
-TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
+void run_chain(SolverKind solver, double& worst, double& rise, double& e0) {
   World w;
+  w.set_solver(solver);
   const Vec3 down = Vec3(std::sin(M_PI / 4), -std::cos(M_PI / 4), 0.0);
   const Quat tilt(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()));
   std::vector<Joint*> joints;
@@ -110,8 +111,9 @@ TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
     joints.push_back(&add_joint(w, def));
     previous = def.a;
   }
-  const double e0 = w.energy();
-  double worst = 0.0, highest = e0;
+  e0 = w.energy();
+  worst = 0.0;
+  double highest = e0;
   for (int step = 0; step < 600; ++step) {
     w.step(1.0 / 60.0);
     for (std::size_t i = 0; i < joints.size(); ++i) {
@@ -123,15 +125,33 @@ TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
     }
     highest = std::max(highest, w.energy());
   }
-  std::printf("chain: worst joint error %.3g m, energy %.6g -> highest %.6g (start %.6g)\n",
-              worst, w.energy(), highest, e0);
+  std::printf("chain %s: worst joint error %.3g m, energy %.6g -> highest %.6g (start %.6g)\n",
+              name(solver).c_str(), worst, w.energy(), highest, e0);
+  rise = highest - e0;
+}
+
+TEST(Chain, BallJointChainHoldsAndKeepsItsEnergy) {
+  double worst = 0.0, rise = 0.0, e0 = 0.0;
+  run_chain(SolverKind::soft_step, worst, rise, e0);
   // The issue's 1 mm: 0.058 mm with the joint trees' exact solve (engine/joint_tree.hpp), now
   // that the joined boxes, which touch end to end at every joint, no longer collide (a joint's
   // `collide` is off by default); with their contacts fighting the joints it was 3.1 mm.
   EXPECT_LT(worst, 1e-3);
   // Energy is measured from its size: the chain's potential energy is negative (below the
   // pivot), so "rising by 1 %" is 1 % of the kinetic energy it can reach, |E0|.
-  EXPECT_LE(highest - e0, 0.01 * std::abs(e0));
+  EXPECT_LE(rise, 0.01 * std::abs(e0));
+}
+
+// The same chain with sequential_impulses (document 000's solver: its joints are swept row
+// block by row block, no exact tree solve). Measured: 1.53 mm (2.75 mm before its position
+// pass corrected each joint's point block as one, engine/solver.cpp correct_block); the
+// issue's 1 mm is soft_step's target and is NOT met here: what is left is the velocity
+// sweeps' convergence along the chain (0.75 mm at 50 iterations). Energy rise 0.59 % of |E0|.
+TEST(Chain, SequentialImpulsesChainHoldsWithinTwoMillimetres) {
+  double worst = 0.0, rise = 0.0, e0 = 0.0;
+  run_chain(SolverKind::sequential_impulses, worst, rise, e0);
+  EXPECT_LT(worst, 2e-3);
+  EXPECT_LE(rise, 0.01 * std::abs(e0));
 }
 
 TEST(Hinge, FreeHingeTurnsAtAConstantRateAndCountsTurns) {
