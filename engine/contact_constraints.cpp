@@ -100,6 +100,7 @@ void ContactConstraints::warm_start(SolverBody* solver) {
   }
   // Impulses scale with the step: a resting contact carries m g Δt.
   const double scale = last_dt_ > 0.0 ? h_ / last_dt_ : 1.0;
+  cold_points_ = 0;
   for (Manifold& m : manifolds_) {
     SolverBody& a = solver[m.a];
     SolverBody& b = solver[m.b];
@@ -107,7 +108,10 @@ void ContactConstraints::warm_start(SolverBody* solver) {
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
       const ContactInfo* found = previous_point(p, first, last);
-      if (found == nullptr) continue;
+      if (found == nullptr) {
+        ++cold_points_;
+        continue;
+      }
       p.normal.impulse = scale * found->sweep_impulse;
       p.tangent1.impulse = scale * found->friction_impulse.dot(p.tangent1.jacobian.linear);
       p.tangent2.impulse = scale * found->friction_impulse.dot(p.tangent2.jacobian.linear);

@@ -199,6 +199,8 @@ class ContactConstraints {
   std::size_t point_count() const { return points_.size(); }
   // The restitution rounds of the last substep that had any (at most 32).
   const std::vector<RestitutionRound>& restitution_rounds() const { return rounds_; }
+  // How many points of this step warm_start found no previous point for (new contacts).
+  std::size_t cold_points() const { return cold_points_; }
   // Every point of the last step (touched and speculative), ordered by body a, then body b or
   // plane, then feature.
   const std::vector<ContactInfo>& contacts() const { return contacts_; }
@@ -354,6 +356,7 @@ class ContactConstraints {
   std::vector<ContactInfo> next_contacts_;
   std::vector<std::uint32_t> order_, merged_;  // store's order of the manifolds
   double last_dt_ = 0.0;
+  std::size_t cold_points_ = 0;
 };
 
 }  // namespace rigidlab

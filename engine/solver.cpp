@@ -446,6 +446,31 @@ void Solver::solve() {
     report_.push_back(std::max(joints, contacts));
     if (sweep == 0) refresh_curvature();
   }
+  // sequential_impulses: a step where contacts begin has no warm start for them, and
+  // `iterations` sweeps carry a load only about as many bodies down a stack (Gauss-Seidel on
+  // a chain of n converges in ~n² sweeps): the rest of the stack falls through its supports
+  // for the first steps, until the warm start has caught up, and each layer stays sunk by
+  // that (under the slop, which the position sweeps leave alone): 2.8 mm for 5 boxes, 57 mm
+  // for a column of 20, 30 mm for the pyramid of 210. So on such a step the sweeps go on
+  // while they pay: until the largest velocity error is a millionth of the first sweep's,
+  // or the last 10 (or `iterations`) sweeps took less than 1 % off it (a heap's contacts
+  // can stall), at most max_iterations in all. The warm steps after keep `iterations`.
+  // (soft_step's push-out carries no load and takes such sinking out again.)
+  if (soft || contacts_.cold_points() == 0) return;
+  const double tolerance = 1e-6 * report_.front();
+  const std::size_t window = static_cast<std::size_t>(std::max(settings.iterations, 10));
+  for (int sweep = settings.iterations;
+       sweep < ContactSettings::max_iterations && report_.back() > tolerance; ++sweep) {
+    const std::size_t done = report_.size();
+    if (done % window == 0 && done >= 2 * window &&
+        report_.back() > 0.99 * report_[done - 1 - window])
+      break;
+    if (poll != nullptr) poll->tick(contacts_.point_count() + rows_.size());
+    const bool forward = sweep % 2 == 0;
+    const double joints = sweep_joints(forward);
+    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward);
+    report_.push_back(std::max(joints, contacts));
+  }
 }
 
 void Solver::integrate_positions() {

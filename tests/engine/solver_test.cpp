@@ -245,7 +245,12 @@ TEST(Solver, WarmStartingCarriesTheSolutionAcrossSteps) {
     for (const Body& b : f.world.bodies()) last += b.velocity.norm() + b.angular_velocity.norm();
     for (const ContactInfo& c : f.world.contacts())
       if (!c.a.valid()) floor_total += c.normal_impulse;
-    EXPECT_GT(first, 1e-3) << name(solver);
+    // sequential_impulses sweeps on to convergence on a step where contacts begin
+    // (engine/solver.cpp Solver::solve): its first step already settles the stack.
+    if (solver == SolverKind::soft_step)
+      EXPECT_GT(first, 1e-3) << name(solver);
+    else
+      EXPECT_LT(first, 1e-6) << name(solver);
     EXPECT_LT(last, 1e-9) << name(solver);
     EXPECT_NEAR(floor_total, 3 * 9.81 * dt, 1e-9) << name(solver);
   }
