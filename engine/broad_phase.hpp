@@ -167,6 +167,7 @@ class BroadPhase {
   bool has_pair(const BroadPhasePair& pair) const;
   void drop_stale_pairs();
   void sift_candidates();
+  void index_pairs();
 
   BroadPhaseSettings settings_;
   DynamicTree moving_, fixed_;
@@ -176,6 +177,14 @@ class BroadPhase {
   std::vector<ProxyId> pending_free_;    // destroyed since the last update
   std::vector<BroadPhasePair> pairs_, added_, removed_, merged_;
   std::vector<BroadPhasePair> candidates_;  // found by create and move since the last update
+  // By proxy id: where the pairs with that proxy as proxy_a lie in pairs_ (one run, as pairs_
+  // is sorted by key_a), so has_pair looks at a proxy's few pairs instead of binary searching
+  // all of them (a search whose cache misses grew with the heap: 0.07 -> 0.25 us per contact
+  // from 1,024 to 4,096 settling spheres). Set by update_pairs; empty for a proxy created since.
+  struct PairRun {
+    std::uint32_t first = 0, count = 0;
+  };
+  std::vector<PairRun> runs_;
 };
 
 template <class Visit>
