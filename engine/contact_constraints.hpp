@@ -306,6 +306,8 @@ class ContactConstraints {
   double turned_target(const Manifold& m, double w, double a_n) const;
   double normal_acceleration(const Manifold& m, const Point& p) const;
   bool start_round(bool first);
+  void link_bodies();
+  void gather_round(int hops);
   double round_sweep(bool forward);
 
   // contact_positions.cpp
@@ -349,6 +351,10 @@ class ContactConstraints {
   std::vector<std::uint32_t> round_manifolds_;  // the manifolds a restitution round sweeps
   bool bounces_ = false;  // the present round has a bounce (a target > 0)
   std::vector<RestitutionRound> rounds_;  // of the last restitution stage
+  // A later round of landings sweeps the manifolds near its impacts (gather_round): each
+  // body's manifolds (body_manifolds_ from body_first_[slot]), and marks for the search.
+  std::vector<std::uint32_t> body_first_, body_manifolds_, frontier_, next_frontier_;
+  std::vector<unsigned char> body_reached_, manifold_taken_;
   long round_solves_ = 0;                 // counted by round_sweep
   std::vector<Vec3> start_velocity_, start_angular_velocity_;  // u before warm starting
   // The last step's points, sorted (warm starting), and the one being built.
