@@ -32,12 +32,15 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
   bodies_in_ = &bodies;
   rows_.clear();
   groups_.clear();
-  block_inverse_.clear();
+  blocks_.clear();
+  fuse_pushes_ = true;
   tree_.clear(bodies_.size());
   tree_rows_.clear();
   tree_offers_.clear();
   const Softness joint_soft = make_soft(settings.joint_hertz, settings.joint_damping_ratio, h);
+  const double warm_scale = last_h_ > 0.0 ? h_ / last_h_ : 1.0;
   for (const JointRef& joint : joints) {
+    const std::vector<double>& kept = joint.constraint->impulses_;
     const Body* b = joint.b == no_body ? nullptr : &bodies[joint.b];
     joint.constraint->track(bodies[joint.a], b);
     const int count = joint.constraint->row_count();
@@ -56,6 +59,10 @@ void Solver::prepare(const std::vector<Body>& bodies, const std::vector<BodyId>&
                  row_velocity(r.row, bodies_[a_slot], bodies_[b_slot]);
       if (spec.kind == JointRow::Kind::spring || spec.kind == JointRow::Kind::motor)
         prepare_oscillator(r, spec);
+      if (spec.kind == JointRow::Kind::motor) fuse_pushes_ = false;
+      // The warm start (applied by warm_start): the impulse the row ended the previous step
+      // with, scaled by the ratio of the time steps, read here while the joint is at hand.
+      if (k < kept.size()) r.row.impulse = std::clamp(warm_scale * kept[k], r.row.lower, r.row.upper);
       rows_.push_back(r);
     }
     group_rows(rows_.size() - scratch_.size());
@@ -110,35 +117,32 @@ Solver::Row Solver::make_row(const JointRow& spec, std::uint32_t a, std::uint32_
   r.a = a, r.b = b;
   r.kind = spec.kind;
   r.error = spec.error;
+  r.block = JointBlocks::none;
   if (spec.kind == JointRow::Kind::limit) r.row.lower = 0.0;
   return r;
 }
 
-// The groups of a joint's rows from `first` on (JointRow::block), each block with the inverse
-// of its K; a block whose K cannot be inverted (neither body can move along some row) is
-// solved row by row.
+// The groups of a joint's rows from `first` on (JointRow::block), each block of equality rows
+// with the inverse of its K, kept as the sweeps read it (engine/joint_blocks.hpp); a block
+// whose K cannot be inverted (neither body can move along some row) is solved row by row.
 void Solver::group_rows(std::size_t first) {
-  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_block, max_block>;
   for (std::size_t k = 0; k < scratch_.size();) {
     const int size = std::clamp<int>(scratch_[k].block, 1, max_block);
     Group g{static_cast<std::uint32_t>(first + k), 1, 0};
     if (size > 1 && k + static_cast<std::size_t>(size) <= scratch_.size()) {
-      Small K(size, size);
-      const Row* rows = &rows_[first + k];
-      for (int i = 0; i < size; ++i)
-        for (int j = 0; j < size; ++j)
-          K(i, j) = coupling(rows[i].row.jacobian, rows[j].row.jacobian, bodies_[rows[0].a],
-                             bodies_[rows[0].b]);
-      // K is symmetric positive semi-definite; a pivot far below the largest diagonal entry
-      // means two rows ask nearly the same of the bodies (or neither can move along one).
-      const Eigen::LLT<Small> llt(K);
-      const double smallest = llt.matrixLLT().diagonal().cwiseAbs().minCoeff();
-      if (llt.info() == Eigen::Success && smallest * smallest > 1e-12 * K.diagonal().maxCoeff()) {
-        BlockMatrix inverse = BlockMatrix::Zero();
-        inverse.topLeftCorner(size, size) = llt.solve(Small::Identity(size, size));
+      Row* rows = &rows_[first + k];
+      Jacobian jacobians[max_block];
+      double bias[max_block], push_bias[max_block];
+      for (int i = 0; i < size; ++i) {
+        jacobians[i] = rows[i].row.jacobian;
+        bias[i] = rows[i].bias;
+        push_bias[i] = rows[0].soft.mass_scale * rows[0].soft.bias_rate * rows[i].error;
+      }
+      g.block = blocks_.add(rows[0].a, rows[0].b, jacobians, size, bodies_[rows[0].a],
+                            bodies_[rows[0].b], bias, push_bias, rows[0].soft);
+      if (g.block != JointBlocks::none) {
         g.size = static_cast<std::uint8_t>(size);
-        g.block = static_cast<std::uint32_t>(block_inverse_.size());
-        block_inverse_.push_back(inverse);
+        for (int i = 0; i < size; ++i) rows[i].block = g.block, rows[i].block_row = i;
       }
     }
     if (g.size > 1) {
@@ -151,6 +155,14 @@ void Solver::group_rows(std::size_t first) {
       k += static_cast<std::size_t>(size);
     }
   }
+}
+
+// Where the sweeps keep a row's accumulated impulse (velocity or push): in its block, or in
+// the row.
+double& Solver::impulse(Row& r, bool push) {
+  if (r.block != JointBlocks::none)
+    return push ? blocks_.push_impulse(r.block, r.block_row) : blocks_.impulse(r.block, r.block_row);
+  return push ? r.push_impulse : r.row.impulse;
 }
 
 // The curvature of an equality row (second order in h). Solved with its Jacobian J at the
@@ -279,18 +291,9 @@ void Solver::prepare_oscillator(Row& r, const JointRow& spec) const {
 
 void Solver::warm_start() {
   contacts_.warm_start(bodies_.data());
-  const double scale = last_h_ > 0.0 ? h_ / last_h_ : 1.0;
-  std::size_t next = 0;
-  for (const JointRef& joint : *joints_) {
-    const std::vector<double>& kept = joint.constraint->impulses_;
-    const std::size_t count = static_cast<std::size_t>(joint.constraint->row_count());
-    for (std::size_t k = 0; k < count; ++k) {
-      Row& r = rows_[next + k];
-      if (k < kept.size())
-        r.row.impulse = std::clamp(scale * kept[k], r.row.lower, r.row.upper);
-      apply_row(r.row, bodies_[r.a], bodies_[r.b], r.row.impulse);
-    }
-    next += count;
+  for (Row& r : rows_) {  // the impulses prepare took from the joints
+    apply_row(r.row, bodies_[r.a], bodies_[r.b], r.row.impulse);
+    impulse(r, false) = r.row.impulse;
   }
 }
 
@@ -312,74 +315,54 @@ double Solver::joint_bias(const Row& r) const {
 
 // The largest velocity error of the sweep: |J v + bias| before each update, except for a row
 // that stays at a bound of its impulse (an inactive limit, a saturated motor): that row is
-// satisfied.
-double Solver::sweep_joints(bool forward) {
+// satisfied. With `push`, each group's push rows are swept right after its velocity rows, in
+// the same pass over the rows (push_joints with feedback, in one read of the rows instead of
+// two): the velocity rows touch only the body velocities and the push rows only the push
+// velocities, so the result is that of the two sweeps one after the other, as long as no push
+// row reads the body velocities (a saturated motor's does: solve() fuses without motors only).
+double Solver::sweep_joints(bool forward, bool push) {
   const bool tree = rigid_factor_.valid;
+  const bool push_tree = push && soft_factor_.valid;
   double largest = tree && forward ? solve_tree(rigid_factor_, false) : 0.0;
+  if (push_tree && forward) solve_tree(soft_factor_, true);
   const std::size_t n = groups_.size();
   for (std::size_t k = 0; k < n; ++k) {
     const Group& g = groups_[forward ? k : n - 1 - k];
-    if (g.tree && tree) continue;
-    Row& r = rows_[g.first];
-    if (g.size > 1) {
-      double bias[max_block];
-      for (int i = 0; i < g.size; ++i) bias[i] = rows_[g.first + i].bias;
-      largest = std::max(largest, solve_block(g, bodies_.data(), bias, rigid_softness, false));
-      continue;
-    }
-    const double before = r.row.impulse;
-    const double error = solve_row(r.row, bodies_[r.a], bodies_[r.b], joint_bias(r), rigid_softness);
-    const bool saturated = r.row.impulse == before &&
-                           (r.row.impulse == r.row.lower || r.row.impulse == r.row.upper);
-    if (!saturated) largest = std::max(largest, error);
+    if (!(g.tree && tree)) largest = std::max(largest, sweep_group(g));
+    if (push && !(g.tree && push_tree)) push_group(g, true);
   }
   if (tree && !forward) largest = std::max(largest, solve_tree(rigid_factor_, false));
+  if (push_tree && !forward) solve_tree(soft_factor_, true);
   return largest;
+}
+
+// One group's velocity rows; its velocity error as sweep_joints counts it. The equality rows of
+// a joint that constrain one point or one orientation together (3 point rows, 2 or 3 angular
+// rows) are a block, as Box2D's revolute joint and Jolt's PointConstraintPart do, updated at
+// once (engine/joint_blocks.hpp): exact for the block in one update where row-by-row
+// Gauss-Seidel converges slowly: a bob on a 1 m arm has lever-arm terms 1000 times its 1/m, and
+// 10 row-by-row sweeps left a hinged pendulum's period 1.5 % long at 80°.
+double Solver::sweep_group(const Group& g) {
+  if (g.size > 1) return blocks_.solve(g.block, bodies_.data(), false);
+  Row& r = rows_[g.first];
+  const double before = r.row.impulse;
+  const double error = solve_row(r.row, bodies_[r.a], bodies_[r.b], joint_bias(r), rigid_softness);
+  const bool saturated = r.row.impulse == before &&
+                         (r.row.impulse == r.row.lower || r.row.impulse == r.row.upper);
+  return saturated ? 0.0 : error;
 }
 
 // The forest's rows in one exact solve (engine/joint_tree.hpp): the rigid velocity rows with
 // their curvature bias, or soft_step's soft position rows on the push velocities.
 double Solver::solve_tree(const JointTree::Factor& f, bool push) {
   for (std::size_t i = 0; i < tree_rows_.size(); ++i) {
-    const Row& r = rows_[tree_rows_[i]];
+    Row& r = rows_[tree_rows_[i]];
     tree_bias_[i] = push ? r.soft.bias_rate * r.error : r.bias;
-    tree_impulse_[i] = push ? r.push_impulse : r.row.impulse;
+    tree_impulse_[i] = impulse(r, push);
   }
   const double largest =
       tree_.solve(f, push ? pushes_.data() : bodies_.data(), tree_bias_.data(), tree_impulse_.data());
-  for (std::size_t i = 0; i < tree_rows_.size(); ++i) {
-    Row& r = rows_[tree_rows_[i]];
-    (push ? r.push_impulse : r.row.impulse) = tree_impulse_[i];
-  }
-  return largest;
-}
-
-// The equality rows of a joint that constrain one point or one orientation together (3 point
-// rows, 2 or 3 angular rows) as a block, as Box2D's revolute joint and Jolt's
-// PointConstraintPart do: with K_ij = J_i W J_jᵀ (coupling, engine/constraint_row.hpp) the
-// change of the accumulated impulses is, in Box2D v3's soft form,
-//   Δλ = −K⁻¹ (mass_scale J v + bias) − impulse_scale λ,
-// exact for the block in one update where row-by-row Gauss-Seidel converges slowly: a bob on
-// a 1 m arm has lever-arm terms 1000 times its 1/m, and 10 row-by-row sweeps left a hinged
-// pendulum's period 1.5 % long at 80°. Returns the largest |J v + bias| before the update.
-double Solver::solve_block(const Group& g, SolverBody* set, const double* bias,
-                           const Softness& soft, bool push) {
-  Row* rows = &rows_[g.first];
-  SolverBody& a = set[rows[0].a];
-  SolverBody& b = set[rows[0].b];
-  BlockVector rhs = BlockVector::Zero(), impulse = BlockVector::Zero();
-  double largest = 0.0;
-  for (int i = 0; i < g.size; ++i) {
-    const double v = row_velocity(rows[i].row, a, b);
-    largest = std::max(largest, std::abs(v + bias[i]));
-    rhs[i] = soft.mass_scale * v + bias[i];
-    impulse[i] = push ? rows[i].push_impulse : rows[i].row.impulse;
-  }
-  const BlockVector change = -(block_inverse_[g.block] * rhs) - soft.impulse_scale * impulse;
-  for (int i = 0; i < g.size; ++i) {
-    apply_row(rows[i].row, a, b, change[i]);
-    (push ? rows[i].push_impulse : rows[i].row.impulse) += change[i];
-  }
+  for (std::size_t i = 0; i < tree_rows_.size(); ++i) impulse(rows_[tree_rows_[i]], push) = tree_impulse_[i];
   return largest;
 }
 
@@ -392,40 +375,40 @@ void Solver::push_joints(bool forward, bool feedback) {
   const std::size_t n = groups_.size();
   for (std::size_t k = 0; k < n; ++k) {
     const Group& g = groups_[forward ? k : n - 1 - k];
-    if (g.tree && tree) continue;
-    Row& r = rows_[g.first];
-    if (g.size > 1) {
-      if (!feedback) continue;
-      double bias[max_block];
-      for (int i = 0; i < g.size; ++i)
-        bias[i] = r.soft.mass_scale * r.soft.bias_rate * rows_[g.first + i].error;
-      solve_block(g, pushes_.data(), bias, r.soft, true);
-      continue;
-    }
-    double bias = 0.0;
-    Softness soft = rigid_softness;
-    if (r.kind == JointRow::Kind::spring || r.kind == JointRow::Kind::motor) {
-      if (!r.pushes) continue;
-      const bool saturated = r.kind == JointRow::Kind::motor &&
-                             (r.row.impulse == r.row.lower || r.row.impulse == r.row.upper);
-      // A saturated motor: −½ of the rate change its constant force made (above).
-      bias = saturated ? 0.5 * (row_velocity(r.row, bodies_[r.a], bodies_[r.b]) - r.start_rate)
-                       : -r.push_target;
-    } else {
-      const bool holds = r.kind == JointRow::Kind::equality ||
-                         (r.kind == JointRow::Kind::limit && r.error <= 0.0);
-      if (!feedback || !holds) continue;
-      soft = r.soft;
-      bias = soft.mass_scale * soft.bias_rate * r.error;
-    }
-    ConstraintRow row = r.row;
-    row.lower = -unbounded, row.upper = unbounded;
-    if (r.kind == JointRow::Kind::limit) row.lower = 0.0;
-    row.impulse = r.push_impulse;
-    solve_row(row, pushes_[r.a], pushes_[r.b], bias, soft);
-    r.push_impulse = row.impulse;
+    if (!(g.tree && tree)) push_group(g, feedback);
   }
   if (tree && !forward) solve_tree(soft_factor_, true);
+}
+
+// One group's push rows.
+void Solver::push_group(const Group& g, bool feedback) {
+  if (g.size > 1) {
+    if (feedback) blocks_.solve(g.block, pushes_.data(), true);
+    return;
+  }
+  Row& r = rows_[g.first];
+  double bias = 0.0;
+  Softness soft = rigid_softness;
+  if (r.kind == JointRow::Kind::spring || r.kind == JointRow::Kind::motor) {
+    if (!r.pushes) return;
+    const bool saturated = r.kind == JointRow::Kind::motor &&
+                           (r.row.impulse == r.row.lower || r.row.impulse == r.row.upper);
+    // A saturated motor: −½ of the rate change its constant force made (above).
+    bias = saturated ? 0.5 * (row_velocity(r.row, bodies_[r.a], bodies_[r.b]) - r.start_rate)
+                     : -r.push_target;
+  } else {
+    const bool holds = r.kind == JointRow::Kind::equality ||
+                       (r.kind == JointRow::Kind::limit && r.error <= 0.0);
+    if (!feedback || !holds) return;
+    soft = r.soft;
+    bias = soft.mass_scale * soft.bias_rate * r.error;
+  }
+  ConstraintRow row = r.row;
+  row.lower = -unbounded, row.upper = unbounded;
+  if (r.kind == JointRow::Kind::limit) row.lower = 0.0;
+  row.impulse = r.push_impulse;
+  solve_row(row, pushes_[r.a], pushes_[r.b], bias, soft);
+  r.push_impulse = row.impulse;
 }
 
 // Joints first, then contacts, as Box2D v3's stages; sweeps alternate direction (symmetric
@@ -436,11 +419,12 @@ void Solver::solve() {
   for (int sweep = 0; sweep < settings.iterations; ++sweep) {
     if (poll != nullptr) poll->tick(contacts_.point_count() + rows_.size());
     const bool forward = sweep % 2 == 0;
-    const double joints = sweep_joints(forward);
     // The joints' push rows before the contacts' (the order of two sweeps), the contacts'
     // velocity and push rows in one pass (ContactConstraints::sweep): the joints' push rows
     // touch only the push velocities, the contacts' velocity rows only the body velocities.
-    push_joints(forward, soft);
+    const bool fuse = soft && fuse_pushes_;
+    const double joints = sweep_joints(forward, fuse);
+    if (!fuse) push_joints(forward, soft);
     const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward,
                                             soft ? pushes_.data() : nullptr);
     report_.push_back(std::max(joints, contacts));
@@ -622,7 +606,7 @@ void Solver::project_velocities(std::vector<Body>& bodies) {
   }
   rows_.clear();
   groups_.clear();
-  block_inverse_.clear();
+  blocks_.clear();
   for (const JointRef& joint : *joints_) {
     const Body* b = joint.b == no_body ? nullptr : &bodies[joint.b];
     scratch_.resize(static_cast<std::size_t>(joint.constraint->row_count()));
@@ -661,7 +645,8 @@ void Solver::store() {
     kept.resize(count);
     c.motor_force_ = 0.0;
     for (std::size_t k = 0; k < count; ++k) {
-      const Row& r = rows_[next + k];
+      Row& r = rows_[next + k];
+      r.row.impulse = impulse(r, false);
       kept[k] = r.row.impulse;
       // What b received: λ J's linear part; angular rows (no linear part) add λ k.
       c.step_impulse_ += r.row.impulse * r.row.jacobian.linear;

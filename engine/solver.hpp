@@ -48,6 +48,7 @@
 #include "engine/constraint_row.hpp"
 #include "engine/contact_constraints.hpp"
 #include "engine/integrators.hpp"
+#include "engine/joint_blocks.hpp"
 #include "engine/joint_tree.hpp"
 #include "engine/solver_settings.hpp"
 #include "engine/step_poll.hpp"
@@ -148,22 +149,24 @@ class Solver {
     std::uint32_t a, b;   // solver slots
     JointRow::Kind kind;
     bool tree;            // in tree_ (engine/joint_tree.hpp)
+    std::uint32_t block;  // the row's block in blocks_ (JointBlocks::none: swept alone); the
+                          // block holds its impulses, and the bias the sweeps read
+    int block_row;        // its row in that block
   };
-  static constexpr int max_block = 6;
-  using BlockMatrix = Eigen::Matrix<double, max_block, max_block>;
-  using BlockVector = Eigen::Matrix<double, max_block, 1>;
+  static constexpr int max_block = JointBlocks::max_size;
   struct Group {  // rows solved together: one row, or a block of 2 to 6 equality rows
     std::uint32_t first;
     std::uint8_t size;
-    std::uint32_t block;  // index in block_inverse_ when size > 1
+    std::uint32_t block;  // index in blocks_ when size > 1
     bool tree = false;    // solved by tree_ (while its factor is valid)
   };
   Row make_row(const JointRow& spec, std::uint32_t a, std::uint32_t b) const;
-  double sweep_joints(bool forward);
-  double solve_block(const Group& g, SolverBody* set, const double* bias, const Softness& soft,
-                     bool push);
+  double sweep_joints(bool forward, bool push = false);
+  double sweep_group(const Group& g);
+  void push_group(const Group& g, bool feedback);
   void group_rows(std::size_t first);
   void push_joints(bool forward, bool feedback);
+  double& impulse(Row& r, bool push);
   void offer_to_tree(const Group& g);
   void refresh_curvature();
   void build_tree(double compliance);
@@ -195,7 +198,8 @@ class Solver {
   std::vector<std::uint32_t> tree_rows_;
   std::vector<std::uint32_t> tree_offers_;  // the group of each offer
   std::vector<double> tree_bias_, tree_impulse_;
-  std::vector<BlockMatrix> block_inverse_;  // K⁻¹ of each block, padded with zeros  // the rows at the poses the free velocities reach
+  JointBlocks blocks_;      // the groups of more than one row, as the sweeps read them
+  bool fuse_pushes_ = false;  // no motor rows: sweep the velocity and push rows in one pass
   const std::vector<JointRef>* joints_ = nullptr;
   const std::vector<Body>* bodies_in_ = nullptr;
   std::vector<double> report_;
