@@ -302,6 +302,52 @@ TEST(ReduceFacePoints, NearlyStraightVerticesGiveWayToTheCorners) {
   EXPECT_NEAR(twice_area_about_y(m) / 2, 4.0, 1e-7);
 }
 
+// The largest area of a quad of four of the points (brute force over every four, each
+// spanning its convex hull: the largest of its three cyclic orders), in the plane y = 0.
+double largest_quad_area(const std::vector<ContactPoint>& p) {
+  auto shoelace = [&](int a, int b, int c, int d) {
+    const int order[4] = {a, b, c, d};
+    double twice = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& u = p[order[k]].point;
+      const Vec3& v = p[order[(k + 1) % 4]].point;
+      twice += u.z() * v.x() - u.x() * v.z();
+    }
+    return std::abs(twice) / 2;
+  };
+  const int n = static_cast<int>(p.size());
+  double best = 0.0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+        for (int d = c + 1; d < n; ++d)
+          best = std::max({best, shoelace(a, b, c, d), shoelace(a, c, b, d), shoelace(a, b, d, c)});
+  return best;
+}
+
+TEST(ReduceFacePoints, AFlatTwistedOctagonKeepsItsLargestQuad) {
+  // θ = 0.1 rad: the four mid-edge vertices turn the boundary by θ, no longer straight. With
+  // all points within a thousandth of the patch's size as deep, whichever is deepest (here
+  // each mid-edge vertex in turn, by 1e-7 m), the quad kept is the largest of the eight points
+  // (the corners: 2 (1 + t₂²), t₂ = tan(π/4 − θ/2)), not three corners and that vertex.
+  const double theta = 0.1, t2 = std::tan(M_PI / 4 - theta / 2);
+  for (int deepest = 0; deepest < 8; deepest += 2) {
+    std::vector<ContactPoint> octagon = twisted_octagon(theta, Vec3::Zero());
+    octagon[deepest].depth += 1e-7;
+    const double largest = largest_quad_area(octagon);
+    EXPECT_NEAR(largest, 2 * (1 + t2 * t2), 1e-12);
+    const Manifold m = reduce_face_points(octagon.data(), 8, Vec3(0, 1, 0));
+    ASSERT_EQ(m.count, 4);
+    EXPECT_NEAR(twice_area_about_y(m) / 2, largest, 1e-12) << "deepest " << deepest;
+  }
+  // A point deeper than that (by a hundredth of the size) is kept: the penetration comes first.
+  std::vector<ContactPoint> octagon = twisted_octagon(theta, Vec3::Zero());
+  octagon[2].depth += 0.01;
+  const Manifold m = reduce_face_points(octagon.data(), 8, Vec3(0, 1, 0));
+  ASSERT_EQ(m.count, 4);
+  EXPECT_EQ(m.points[0].feature, 2u);
+}
+
 TEST(ReduceFacePoints, KeepsFourCornersWhenTheFarthestIsANeighbour) {
   // A flat pentagon, deepest at (0, 0): the farthest point from it, (10, 0), is its
   // neighbour, so no point lies beyond their edge; the fourth comes from beyond the other
