@@ -86,7 +86,9 @@ const Property properties[] = {
      "\"soft_step\" (default) or \"sequential_impulses\": how contacts and joints are solved",
      nullptr, nullptr},
     {"iterations", get_setting, set_setting,
-     "velocity sweeps per substep (10); more make tall stacks and chains stiffer", nullptr,
+     "velocity sweeps per substep (10); more make tall stacks and chains stiffer. "
+     "sequential_impulses sweeps on to convergence (at most 1000) on a substep where new "
+     "contacts begin, which have no warm start yet", nullptr,
      &iterations},
     {"relax_iterations", get_setting, set_setting,
      "soft_step: rigid sweeps after the positions moved (4)", nullptr, &relax_iterations},
