@@ -79,26 +79,8 @@ void scattered(benchmark::State& state) { run_scattered(state, true); }
 
 void run_settle(benchmark::State& state, double restitution) {
   const int n = static_cast<int>(state.range(0));
-  const int side = static_cast<int>(std::lround(std::sqrt(n / 4.0)));  // 4 layers
   World w;
-  const double width = 0.25 * side;
-  const double e = restitution;
-  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(1, 0, 0), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(-1, 0, 0), -width, e, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, 1), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, -1), -width, e, 0.5));
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = 0; i < n; ++i) {
-    Body b = make_sphere_body(0.1, 0.1);
-    b.position = Vec3(0.125 + 0.25 * (i % side), 0.2 + 0.25 * (i / (side * side)),
-                      0.125 + 0.25 * ((i / side) % side)) +
-                 0.02 * Vec3(u(rng), u(rng), u(rng));
-    b.friction = 0.5;
-    b.restitution = e;
-    w.add(b);
-  }
+  fill_heap(w, n, restitution);
   w.step(dt, 30);  // half a second: they have landed on each other and are settling
   // Every size is timed over the same second of its settling (0.5 s to 1.5 s, restored from
   // the state at 0.5 s after each 60 steps), so the heaps compared are in the same state: timed

@@ -416,20 +416,6 @@ void Solver::push_group(const Group& g, bool feedback) {
 void Solver::solve() {
   const bool soft = kind == SolverKind::soft_step;
   report_.clear();
-  for (int sweep = 0; sweep < settings.iterations; ++sweep) {
-    if (poll != nullptr) poll->tick(contacts_.point_count() + rows_.size());
-    const bool forward = sweep % 2 == 0;
-    // The joints' push rows before the contacts' (the order of two sweeps), the contacts'
-    // velocity and push rows in one pass (ContactConstraints::sweep): the joints' push rows
-    // touch only the push velocities, the contacts' velocity rows only the body velocities.
-    const bool fuse = soft && fuse_pushes_;
-    const double joints = sweep_joints(forward, fuse);
-    if (!fuse) push_joints(forward, soft);
-    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward,
-                                            soft ? pushes_.data() : nullptr);
-    report_.push_back(std::max(joints, contacts));
-    if (sweep == 0) refresh_curvature();
-  }
   // sequential_impulses: a step where contacts begin has no warm start for them, and
   // `iterations` sweeps carry a load only about as many bodies down a stack (Gauss-Seidel on
   // a chain of n converges in ~n² sweeps): the rest of the stack falls through its supports
@@ -440,20 +426,30 @@ void Solver::solve() {
   // or the last 10 (or `iterations`) sweeps took less than 1 % off it (a heap's contacts
   // can stall), at most max_iterations in all. The warm steps after keep `iterations`.
   // (soft_step's push-out carries no load and takes such sinking out again.)
-  if (soft || contacts_.cold_points() == 0) return;
-  const double tolerance = 1e-6 * report_.front();
+  const bool converge = !soft && contacts_.cold_points() > 0;
+  const int most = converge ? ContactSettings::max_iterations : settings.iterations;
   const std::size_t window = static_cast<std::size_t>(std::max(settings.iterations, 10));
-  for (int sweep = settings.iterations;
-       sweep < ContactSettings::max_iterations && report_.back() > tolerance; ++sweep) {
-    const std::size_t done = report_.size();
-    if (done % window == 0 && done >= 2 * window &&
-        report_.back() > 0.99 * report_[done - 1 - window])
-      break;
+  for (int sweep = 0; sweep < most; ++sweep) {
+    const bool extra = sweep >= settings.iterations;
+    if (extra) {
+      const std::size_t done = report_.size();
+      if (!(report_.back() > 1e-6 * report_.front())) break;
+      if (done % window == 0 && done >= 2 * window &&
+          report_.back() > 0.99 * report_[done - 1 - window])
+        break;
+    }
     if (poll != nullptr) poll->tick(contacts_.point_count() + rows_.size());
     const bool forward = sweep % 2 == 0;
-    const double joints = sweep_joints(forward);
-    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward);
+    // The joints' push rows before the contacts' (the order of two sweeps), the contacts'
+    // velocity and push rows in one pass (ContactConstraints::sweep): the joints' push rows
+    // touch only the push velocities, the contacts' velocity rows only the body velocities.
+    const bool fuse = soft && fuse_pushes_;
+    const double joints = sweep_joints(forward, fuse);
+    if (!fuse && !extra) push_joints(forward, soft);
+    const double contacts = contacts_.sweep(bodies_.data(), NormalMode::velocity, forward,
+                                            soft ? pushes_.data() : nullptr);
     report_.push_back(std::max(joints, contacts));
+    if (sweep == 0) refresh_curvature();
   }
 }
 

@@ -8,10 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
-#include <random>
 
 #include "engine/world.hpp"
+#include "tests/engine/world_stacks.hpp"
 
 namespace rigidlab {
 namespace {
@@ -19,29 +18,6 @@ namespace {
 constexpr double dt = 1.0 / 60.0;
 constexpr long budget = 16'000;  // manifold solves of a round with a bounce
 constexpr int small_round = 16;  // manifolds: such a round may sweep max_iterations times
-
-// The settling heap of bench/contacts_bench.cpp (settle/N) with restitution e: n spheres of
-// r = 0.1 m in 4 jittered layers dropped into a bin of five planes.
-void fill_heap(World& w, int n, double e) {
-  const int side = static_cast<int>(std::lround(std::sqrt(n / 4.0)));
-  const double width = 0.25 * side;
-  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(1, 0, 0), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(-1, 0, 0), -width, e, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, 1), 0.0, e, 0.5));
-  w.add_plane(make_plane(Vec3(0, 0, -1), -width, e, 0.5));
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int i = 0; i < n; ++i) {
-    Body b = make_sphere_body(0.1, 0.1);
-    b.position = Vec3(0.125 + 0.25 * (i % side), 0.2 + 0.25 * (i / (side * side)),
-                      0.125 + 0.25 * ((i / side) % side)) +
-                 0.02 * Vec3(u(rng), u(rng), u(rng));
-    b.friction = 0.5;
-    b.restitution = e;
-    w.add(b);
-  }
-}
 
 struct Seen {
   int bounce_rounds = 0, landing_rounds = 0;
