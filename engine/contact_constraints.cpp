@@ -293,14 +293,24 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   if (!(m.friction > 0.0)) return;
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
+  // The velocities in locals for the manifold's points: the stores of the impulses could
+  // alias them, and every point would read them back from memory.
+  Vec3 va = a.velocity, wa = a.angular_velocity, vb = b.velocity, wb = b.angular_velocity;
+  const double ma = a.inverse_mass, mb = b.inverse_mass;
+  bool changed = false;
   for (std::uint32_t i = 0; i < m.count; ++i) {
     Point& p = points_[m.first + (forward ? i : m.count - 1 - i)];
     const double limit = m.friction * p.normal.impulse;
     // No normal load and no friction impulse: the disk is a point and nothing changes (side
     // by side boxes of a pyramid, spheres grazing in a heap).
     if (limit == 0.0 && p.tangent1.impulse == 0.0 && p.tangent2.impulse == 0.0) continue;
-    double t1 = p.tangent1.impulse - p.tangent1.mass * row_velocity(p.tangent1, a, b);
-    double t2 = p.tangent2.impulse - p.tangent2.mass * row_velocity(p.tangent2, a, b);
+    const Vec3 dv = vb - va;
+    const Jacobian& j1 = p.tangent1.jacobian;
+    const Jacobian& j2 = p.tangent2.jacobian;
+    double t1 = p.tangent1.impulse -
+                p.tangent1.mass * (j1.linear.dot(dv) + j1.angular_b.dot(wb) - j1.angular_a.dot(wa));
+    double t2 = p.tangent2.impulse -
+                p.tangent2.mass * (j2.linear.dot(dv) + j2.angular_b.dot(wb) - j2.angular_a.dot(wa));
     // Squares first: std::hypot's care against overflow cost a fifth of a pyramid's step, so
     // it is kept for the impulses whose squares overflow; and a point that sticks (inside the
     // disk, the usual case at rest) needs no square root at all.
@@ -315,78 +325,116 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
     }
     // Both rows' changes applied at once (Δv = W Jᵀ Δλ of the pair).
     const double d1 = t1 - p.tangent1.impulse, d2 = t2 - p.tangent2.impulse;
-    const Vec3 linear = d1 * p.tangent1.jacobian.linear + d2 * p.tangent2.jacobian.linear;
-    a.velocity -= a.inverse_mass * linear;
-    a.angular_velocity -= d1 * p.tangent1.weighted_a + d2 * p.tangent2.weighted_a;
-    b.velocity += b.inverse_mass * linear;
-    b.angular_velocity += d1 * p.tangent1.weighted_b + d2 * p.tangent2.weighted_b;
+    const Vec3 linear = d1 * j1.linear + d2 * j2.linear;
+    va -= ma * linear;
+    wa -= d1 * p.tangent1.weighted_a + d2 * p.tangent2.weighted_a;
+    vb += mb * linear;
+    wb += d1 * p.tangent1.weighted_b + d2 * p.tangent2.weighted_b;
     p.tangent1.impulse = t1, p.tangent2.impulse = t2;
+    changed = true;
   }
+  if (!changed) return;
+  a.velocity = va, a.angular_velocity = wa;
+  b.velocity = vb, b.angular_velocity = wb;
 }
 
 // λ' = P λ − A r on the manifold's points (see the header), r = J v + bias (the caller's
-// `residual`, measured before the update), on the impulses `which` names. Nothing happens and
-// false is returned when some λ' leaves [0, cap]; the λ' found is left in `result` for
-// solve_subset to start from.
-bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse,
-                                     const Mat4& projector, const double* residual,
-                                     const double* cap, Impulse which, Vec4* result) {
+// `residual`, measured before the update), on the impulses `which` names. P is not stored:
+// with c the null vector of K (zero for fewer than four points), K⁺K = I − c cᵀ, and for the
+// soft block S = (K + γI)⁻¹ − c cᵀ/γ, S K = I − γ S − c cᵀ (as (K + γI)⁻¹K = I − γ(K + γI)⁻¹
+// and K c = 0), so λ' = λ − c (c·λ) − A (r + γ λ), γ = 0 for the rigid block: one 4 x 4
+// product instead of two. Nothing happens and false is returned when some λ' leaves [0, cap];
+// the λ' found is left in `result` for solve_subset to start from.
+bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
+                                     const double* residual, const double* cap, Impulse which,
+                                     Vec4* result) {
   Manifold& m = manifolds_[manifold];
-  SolverBody& a = solver_[m.a];
-  SolverBody& b = solver_[m.b];
   const int count = static_cast<int>(m.count);
-  Vec4 old = Vec4::Zero(), r = Vec4::Zero();
+  Point* points = points_.data() + m.first;
+  // Plain arrays, not packets: the impulses arrive one by one, and a packet load of values
+  // just stored one by one waits for the stores.
+  double old[max_manifold_points] = {0.0, 0.0, 0.0, 0.0}, r[max_manifold_points] = {0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < count; ++i) {
-    old[i] = impulse_of(points_[m.first + i], which);
-    r[i] = residual[i];
+    old[i] = impulse_of(points[i], which);
+    r[i] = residual[i] + gamma * old[i];
   }
-  const Vec4 next = projector * old - inverse * r;
-  if (result != nullptr) *result = next;
+  const double* c = blocks_[manifold].null.data();
+  const double* inv = inverse.data();  // column-major
+  const double along = c[0] * old[0] + c[1] * old[1] + c[2] * old[2] + c[3] * old[3];
+  double next[max_manifold_points];
+  for (int i = 0; i < max_manifold_points; ++i)
+    next[i] = old[i] - along * c[i] -
+              (inv[i] * r[0] + inv[i + 4] * r[1] + inv[i + 8] * r[2] + inv[i + 12] * r[3]);
+  if (result != nullptr) *result = Vec4(next[0], next[1], next[2], next[3]);
   for (int i = 0; i < count; ++i)
     if (!(next[i] >= 0.0) || (cap != nullptr && next[i] > cap[i])) return false;
+  // The changes applied at once: the points share the normal (Δv = W Jᵀ Δλ of the block).
+  SolverBody& a = solver_[m.a];
+  SolverBody& b = solver_[m.b];
+  double total = 0.0;
+  Vec3 angular_a = Vec3::Zero(), angular_b = Vec3::Zero();
   for (int i = 0; i < count; ++i) {
-    Point& p = points_[m.first + i];
-    apply_row(p.normal, a, b, next[i] - old[i]);
+    Point& p = points[i];
+    const double change = next[i] - old[i];
+    total += change;
+    angular_a += change * p.normal.weighted_a;
+    angular_b += change * p.normal.weighted_b;
     impulse_of(p, which) = next[i];
   }
+  a.velocity -= (a.inverse_mass * total) * m.normal;
+  a.angular_velocity -= angular_a;
+  b.velocity += (b.inverse_mass * total) * m.normal;
+  b.angular_velocity += angular_b;
   return true;
 }
 
-namespace {
-
-// Solves the leading n x n system of `matrix` (the rest is the identity) for `right`; false
-// when its determinant is not above `threshold` in size (Eigen's computeInverseWithCheck
-// rule). Closed forms for n ≤ 2, the inverse of its size above: no 4 x 4 inverse for the one
-// or two points of a manifold left free.
-bool solve_leading(const Eigen::Matrix4d& matrix, int n, const Eigen::Vector4d& right,
-                   double threshold, Eigen::Vector4d& solved) {
-  solved.setZero();
+// The leading n x n system of a subset's matrix (the rest is the identity), made ready to
+// solve: closed forms for n ≤ 2 (the matrix itself kept), the inverse of its size above; not
+// `ok` when its determinant is not above `threshold` in size (Eigen's computeInverseWithCheck
+// rule). No 4 x 4 inverse for the one or two points of a manifold left free. A subset's
+// factor depends only on K, Γ and which rows are free, so solve_subset keeps the last one per
+// manifold and softness (a pyramid's half-supported faces free the same rows sweep after
+// sweep) and solves with it exactly as with a new one.
+void ContactConstraints::SubsetFactor::make(const Eigen::Matrix4d& matrix, int size,
+                                            double threshold) {
+  n = size;
+  ok = false;
   if (n == 1) {
-    if (!(std::abs(matrix(0, 0)) > threshold)) return false;
-    solved[0] = right[0] / matrix(0, 0);
-    return true;
-  }
-  if (n == 2) {
+    ok = std::abs(matrix(0, 0)) > threshold;
+    data = matrix;
+  } else if (n == 2) {
     const double det = matrix(0, 0) * matrix(1, 1) - matrix(0, 1) * matrix(1, 0);
-    if (!(std::abs(det) > threshold)) return false;
-    solved[0] = (matrix(1, 1) * right[0] - matrix(0, 1) * right[1]) / det;
-    solved[1] = (matrix(0, 0) * right[1] - matrix(1, 0) * right[0]) / det;
-    return true;
-  }
-  bool invertible = false;
-  if (n == 3) {
+    ok = std::abs(det) > threshold;
+    data = matrix;
+    data(3, 3) = det;
+  } else if (n == 3) {
     Eigen::Matrix3d inverse;
-    matrix.topLeftCorner<3, 3>().computeInverseWithCheck(inverse, invertible, threshold);
-    if (invertible) solved.head<3>() = inverse * right.head<3>();
-    return invertible;
+    matrix.topLeftCorner<3, 3>().computeInverseWithCheck(inverse, ok, threshold);
+    data.topLeftCorner<3, 3>() = inverse;
+  } else {
+    Eigen::Matrix4d inverse;
+    matrix.computeInverseWithCheck(inverse, ok, threshold);
+    data = inverse;
   }
-  Eigen::Matrix4d inverse;
-  matrix.computeInverseWithCheck(inverse, invertible, threshold);
-  if (invertible) solved = inverse * right;
-  return invertible;
 }
 
-}  // namespace
+void ContactConstraints::SubsetFactor::solve(const Eigen::Vector4d& right,
+                                             Eigen::Vector4d& solved) const {
+  solved.setZero();
+  if (n == 1) {
+    solved[0] = right[0] / data(0, 0);
+  } else if (n == 2) {
+    const double det = data(3, 3);
+    solved[0] = (data(1, 1) * right[0] - data(0, 1) * right[1]) / det;
+    solved[1] = (data(0, 0) * right[1] - data(1, 0) * right[0]) / det;
+  } else if (n == 3) {
+    const Eigen::Matrix3d inverse = data.topLeftCorner<3, 3>();
+    solved.head<3>() = inverse * right.head<3>();
+  } else {
+    const Eigen::Matrix4d inverse = data;
+    solved = inverse * right;
+  }
+}
 
 // The active normal rows of a manifold solved together (see the header), each λ' within
 // [0, cap]: (K_s + Γ_s) λ'_s = K λ − r − K λ'_held over the rows not held at a bound, the
@@ -424,20 +472,32 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
         kept[t] = held[j] ? old[j] - next[j] : old[j];
         if (!held[j]) index[n++] = j;
       }
-      Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
       Eigen::Vector4d right = Eigen::Vector4d::Zero();
+      std::uint16_t key = 0;
       for (int r = 0; r < n; ++r) {
         const int i = index[r];
         double sum = -residual[i];
         for (int t = 0; t < taken; ++t) sum += k(i, taking[t]) * kept[t];
         right[r] = sum;
-        for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
-        matrix(r, r) += gamma[i];
+        key |= static_cast<std::uint16_t>(1u << i);
       }
+      for (int t = 0; t < taken; ++t) key |= static_cast<std::uint16_t>(1u << (4 + taking[t]));
       if (n > 0) {
+        // Γ is the same for all the points of a manifold (0 or its compliance).
+        SubsetFactor& factor = blocks_[manifold].subset[gamma[index[0]] != 0.0 ? 1 : 0];
+        if (factor.key != key) {
+          Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+          for (int r = 0; r < n; ++r) {
+            const int i = index[r];
+            for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
+            matrix(r, r) += gamma[i];
+          }
+          factor.make(matrix, n, 1e-12 * matrix.diagonal().maxCoeff());
+          factor.key = key;
+        }
+        if (!factor.ok) return false;
         Eigen::Vector4d solved;
-        if (!solve_leading(matrix, n, right, 1e-12 * matrix.diagonal().maxCoeff(), solved))
-          return false;
+        factor.solve(right, solved);
         for (int r = 0; r < n; ++r) next[index[r]] = solved[r];
       }
     } else {
@@ -480,6 +540,8 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   bool all_active = true, solved = true;
   double largest = 0.0;
   const ModeRow* rows = mode_rows(mode).rows.data() + m.first;
+  // J v = n·(v_b − v_a) + (r_b × n)·ω_b − (r_a × n)·ω_a: the points share the first term.
+  const double linear = m.normal.dot(b.velocity - a.velocity);
   for (std::uint32_t i = 0; i < m.count; ++i) {
     Point& p = points_[m.first + i];
     active[i] = rows[i].active;
@@ -490,7 +552,8 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
       residual[i] = 0.0;
       continue;
     }
-    const double velocity = row_velocity(p.normal, a, b);
+    const double velocity = linear + p.normal.jacobian.angular_b.dot(b.angular_velocity) -
+                            p.normal.jacobian.angular_a.dot(a.angular_velocity);
     const double impulse = impulse_of(p, which);
     // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
     // for all the points of a manifold: they share their softness): offset = bias/mass_scale.
@@ -508,7 +571,7 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     Vec4 start;
     if (all_active) {
       if (solve_block(manifold, push ? block.soft_inverse : block.rigid_inverse,
-                      push ? block.soft_projector : block.rigid_projector, residual,
+                      push ? m.compliance : 0.0, residual,
                       mode == NormalMode::relax ? cap : nullptr, which, &start) ||
           solve_subset(manifold, active, residual, gamma, cap, which, &start))
         return largest;
@@ -592,6 +655,7 @@ Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
 void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Manifold& m = manifolds_[manifold];
   m.block = false;
+  blocks_[manifold].subset[0].key = blocks_[manifold].subset[1].key = SubsetFactor::none;
   const int count = static_cast<int>(m.count);
   if (count < 2) return;
   const SolverBody& a = found_with_[m.a];
@@ -632,7 +696,7 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   block.k = k;
   for (int i = count; i < 4; ++i) block.k(i, i) = 0.0;
   block.rigid_inverse = pseudo;
-  block.rigid_projector = pseudo * k;
+  block.null = c;
   // Soft: (K + γI)⁻¹ on the range of K (the component along c of a residual has no impulse
   // that could change it, and would be amplified by 1/γ).
   if (!soft_too) {  // after the positions moved: the push sweeps are done
@@ -648,10 +712,8 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
     for (int i = count; i < 4; ++i) soft_inverse(i, i) = 0.0;
     if (!soft_inverse.allFinite()) return;
     block.soft_inverse = soft_inverse;
-    block.soft_projector = soft_inverse * k;
   } else {
     block.soft_inverse = block.rigid_inverse;
-    block.soft_projector = block.rigid_projector;
   }
   m.block = true;
 }

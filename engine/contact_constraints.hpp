@@ -257,10 +257,23 @@ class ContactConstraints {
   };
   using Mat4 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
   using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
+  // A subset's matrix made ready to solve (contact_constraints.cpp), for the rows `key` names:
+  // bits 0-3 the free rows, 4-7 the rows taking part.
+  struct SubsetFactor {
+    static constexpr std::uint16_t none = 0xffff;
+    Eigen::Matrix4d data;
+    std::uint16_t key = none;
+    int n = 0;
+    bool ok = false;
+    void make(const Eigen::Matrix4d& matrix, int size, double threshold);
+    void solve(const Eigen::Vector4d& right, Eigen::Vector4d& solved) const;
+  };
   struct Block {
-    Mat4 k;                               // J W Jᵀ of the normal rows
-    Mat4 rigid_inverse, rigid_projector;  // K⁺, K⁺K
-    Mat4 soft_inverse, soft_projector;    // (K + Γ)⁻¹, (K + Γ)⁻¹K
+    Mat4 k;              // J W Jᵀ of the normal rows
+    Mat4 rigid_inverse;  // K⁺
+    Mat4 soft_inverse;   // (K + Γ)⁻¹ on the range of K
+    Vec4 null;           // c, the unit null vector of K of four points (else zero)
+    SubsetFactor subset[2];  // the last subset solved, rigid and soft (solve_subset)
   };
 
   // contact_finder.cpp
@@ -295,7 +308,7 @@ class ContactConstraints {
   // Which impulse of a point a block solve accumulates.
   enum class Impulse { sweep, round, push };
   static double& impulse_of(Point& p, Impulse which);
-  bool solve_block(std::size_t manifold, const Mat4& inverse, const Mat4& projector,
+  bool solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
                    const double* residual, const double* cap, Impulse which, Vec4* result);
   bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
                     const double* gamma, const double* cap, Impulse which, const Vec4* first);

@@ -8,7 +8,7 @@
 -- value in the same commit, saying why), not that rigidlab became nondeterministic.
 local T = dofile("testing.lua")
 
-local STORED_HASH = "5b296b81333959fd"
+local STORED_HASH = "046994a403abdeb8"
 
 -- A tiny linear congruential generator, so the scene does not depend on math.random.
 local function generator(seed)
