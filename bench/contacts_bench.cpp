@@ -144,4 +144,25 @@ BENCHMARK(column)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(column20)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(stack)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 
+// ---- a settled heap asleep (engine/islands.hpp) ----------------------------------------------------
+//   asleep/N/S    the settle/N heap after 8 s (settled; with S = 1, world.sleeping on, so its
+//                 islands have fallen asleep), timed: ms per step with sleeping off (S = 0) and
+//                 on (S = 1), and the share of bodies asleep (%).
+namespace {
+void asleep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  World w;
+  w.set_sleeping(state.range(1) != 0);
+  fill_heap(w, n, 0.0);
+  w.step(dt, 480);
+  for (auto _ : state) {
+    w.step(dt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  state.counters["asleep_percent"] = 100.0 * static_cast<double>(w.sleeping_count()) / n;
+}
+}  // namespace
+BENCHMARK(asleep)->Args({1024, 0})->Args({1024, 1})->Iterations(120)->Unit(benchmark::kMillisecond);
+
 BENCHMARK_MAIN();

@@ -10,6 +10,7 @@
 // inertia I' = R I Rᵀ, angular momentum L = I ω, point velocity v + ω × r, torque r × f.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -42,6 +43,11 @@ struct Body {
   // Surface material for contacts (engine/plane.hpp: mixing rules and defaults).
   double restitution = default_restitution;  // e in [0, 1]
   double friction = default_friction;        // Coulomb μ >= 0
+  // Sleep state, kept by a world with sleeping on (engine/islands.hpp): a sleeping body is at
+  // rest and skipped by the step until its island wakes.
+  bool sleeping = false;
+  double sleep_time = 0.0;     // s the body has been slower than the sleep tolerances
+  std::uint32_t island = 0;    // while sleeping: its island's label
 };
 
 // Why `mass` (kg) cannot be a dynamic body's mass, or empty: it must be finite, > 0, and not

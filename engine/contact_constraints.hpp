@@ -199,6 +199,12 @@ class ContactConstraints {
   std::size_t point_count() const { return points_.size(); }
   // The restitution rounds of the last substep that had any (at most 32).
   const std::vector<RestitutionRound>& restitution_rounds() const { return rounds_; }
+  // The manifolds the last find made, as the pairs of solver slots (a is the ground slot for a
+  // plane): the world's sleep stage wakes an island a pair reaches (engine/islands.hpp).
+  std::size_t manifold_count() const { return manifolds_.size(); }
+  std::pair<std::uint32_t, std::uint32_t> manifold_slots(std::size_t m) const {
+    return {manifolds_[m].a, manifolds_[m].b};
+  }
   // How many points of this step warm_start found no previous point for (new contacts).
   std::size_t cold_points() const { return cold_points_; }
   // Every point of the last step (touched and speculative), ordered by body a, then body b or

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "engine/format.hpp"
 
@@ -61,6 +62,7 @@ World::~World() { store_->world_ = nullptr; }
 
 void World::set_gravity(const Vec3& g) {
   if (!is_finite(g)) throw std::invalid_argument("gravity must be finite");
+  if (g != gravity_ && !stepping()) wake_all();
   gravity_ = g;
 }
 
@@ -81,6 +83,7 @@ void World::set_contact_settings(const ContactSettings& s) {
   const std::string problem = contact_settings_problem(s);
   if (!problem.empty()) throw std::invalid_argument(problem);
   solver_.settings = s;
+  wake_all();
 }
 
 // ---- bodies and what is attached to them ---------------------------------------------------
@@ -90,6 +93,9 @@ BodyId World::add(const Body& b) {
   if (!state_is_finite(b) || !is_finite(b.force) || !is_finite(b.torque))
     throw std::invalid_argument("the body's state must be finite");
   const BodyId id = store_->insert(b);
+  Body& added = store_->get(id);
+  added.sleeping = false;
+  added.sleep_time = 0.0;
   if (b.shape.kind != ShapeKind::none) ++shaped_bodies_;
   return id;
 }
@@ -98,6 +104,7 @@ BodyId World::add(const Body& b) {
 Body World::remove(BodyId id) {
   require_not_stepping(*this, "remove a body");
   if (!store_->contains(id)) throw std::invalid_argument("the body is not in this world");
+  wake(id);  // its island loses a body (and what linked the others through it)
   auto attached = [id](BodyId a, BodyId b) { return a == id || b == id; };
   springs_.erase(std::remove_if(springs_.begin(), springs_.end(),
                                 [&](const Spring& s) { return attached(s.a, s.b); }),
@@ -119,6 +126,7 @@ std::size_t World::add_plane(const Plane& p) {
   require_not_stepping(*this, "add a plane");
   // Re-validate through make_plane: the normal must be unit for the contact code.
   planes_.push_back(make_plane(p.normal, p.offset, p.restitution, p.friction));
+  wake_all();  // sleeping bodies do not meet planes: the new one must find them awake
   return planes_.size() - 1;
 }
 
@@ -129,6 +137,8 @@ void World::add_spring(const Spring& s) {
   const std::string problem = spring_problem(s);
   if (!problem.empty()) throw std::invalid_argument(problem);
   springs_.push_back(s);
+  wake(s.a);
+  if (s.b.valid()) wake(s.b);
 }
 
 void World::add_drag(const Drag& d) {
@@ -138,12 +148,14 @@ void World::add_drag(const Drag& d) {
   const std::string problem = drag_problem(d);
   if (!problem.empty()) throw std::invalid_argument(problem);
   drags_.push_back(d);
+  wake(d.body);
 }
 
 void World::add_force(ForceCallback callback) {
   require_not_stepping(*this, "add a force");
   if (!callback) throw std::invalid_argument("the force callback is empty");
   callbacks_.push_back(std::move(callback));
+  wake_all();  // a force callback may push any body at any time: nothing sleeps with one
 }
 
 Constraint& World::add_constraint(std::unique_ptr<Constraint> joint) {
@@ -156,6 +168,8 @@ Constraint& World::add_constraint(std::unique_ptr<Constraint> joint) {
     throw std::invalid_argument("a joint needs two different bodies");
   if (joint->row_count() < 0) throw std::invalid_argument("a joint has no negative row count");
   joint->serial_ = ++last_joint_serial_;
+  wake(joint->body_a());
+  if (joint->body_b().valid()) wake(joint->body_b());
   joints_.push_back(std::move(joint));
   return *joints_.back();
 }
@@ -165,6 +179,8 @@ void World::remove_constraint(const Constraint& joint) {
   const auto it = std::find_if(joints_.begin(), joints_.end(),
                                [&](const std::unique_ptr<Constraint>& j) { return j.get() == &joint; });
   if (it == joints_.end()) throw std::invalid_argument("the joint is not in this world");
+  wake((*it)->body_a());
+  if ((*it)->body_b().valid()) wake((*it)->body_b());
   joints_.erase(it);
 }
 
@@ -253,13 +269,27 @@ std::size_t World::free_substep(double t, double h, BodyState* save_to) {
 //  12 joint velocity projection (sequential_impulses) engine/solver.cpp
 std::size_t World::substep(double t, double h, BodyState* save_to) {
   if (!has_constraints()) return free_substep(t, h, save_to);
-  if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
   std::vector<Body>& bodies = this->bodies();
-  solver_.begin(bodies.size());
-  velocity_stage(integrator_, gyroscopic_, bodies, gravity_, h, solver_.bodies(),
-                 solver_.accelerations(), stages_);
-  solver_.stages = &stages_;
-  solver_.prepare(bodies, store_->ids(), planes_, joint_refs_, h);
+  // The sleep stage: a contact found between an awake body and a sleeping one wakes the
+  // sleeping island, and the substep starts again from its accumulators with that island's
+  // masses (engine/islands.hpp, "Waking").
+  const bool may_wake = islands_.any_frozen();
+  if (may_wake) {
+    accumulators_.resize(bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      accumulators_[i] = {bodies[i].force, bodies[i].torque};
+  }
+  for (;;) {
+    if (integrator_ != Integrator::rk4 && has_force_elements()) evaluate_forces(t);
+    solver_.begin(bodies.size());
+    velocity_stage(integrator_, gyroscopic_, bodies, gravity_, h, solver_.bodies(),
+                   solver_.accelerations(), stages_);
+    solver_.stages = &stages_;
+    solver_.prepare(bodies, store_->ids(), planes_, may_wake ? awake_joints() : joint_refs_, h);
+    if (!may_wake || !wake_touched()) break;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      std::tie(bodies[i].force, bodies[i].torque) = accumulators_[i];
+  }
   solver_.warm_start();
   solver_.solve();
   solver_.integrate_positions();
@@ -315,8 +345,17 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
   const bool snapshot_in_pass = !has_force_elements() && !has_constraints();
   const double h = dt / substeps_;
   std::vector<Body>& bodies = this->bodies();
+  // Gives the bodies frozen by the sleep stage their mass properties back, however the step
+  // ends.
+  struct Thaw {
+    Islands& islands;
+    std::vector<Body>& bodies;
+    ~Thaw() { islands.thaw(bodies); }
+  };
   for (long k = 0; k < count; ++k) {
     StepGuard guard(*this, !snapshot_in_pass);
+    if (sleeping_) islands_.freeze(bodies);
+    Thaw thaw{islands_, bodies};
     const double t = time_;
     for (const auto& j : joints_) j->step_impulse_ = j->step_angular_impulse_ = Vec3::Zero();
     for (int s = 0; s < substeps_; ++s) {
@@ -334,11 +373,89 @@ void World::step(double dt, long count, const std::function<void()>& poll) {
       if (bad != all_finite) throw_non_finite(bad, t, t + dt, count);
       poller.tick(bodies.size() + 1);
     }
+    islands_.thaw(bodies);
     time_ = t + dt;
     guard.commit();
     ++steps_completed_;
+    if (sleeping_) sleep_stage(dt);
     for (const std::shared_ptr<StepObserver>& o : observers_) o->after_step(*this);
   }
+}
+
+// ---- the sleep stage (engine/islands.hpp) ------------------------------------------------------
+
+void World::set_sleeping(bool on) {
+  require_not_stepping(*this, "change sleeping");
+  if (!on) wake_all();
+  sleeping_ = on;
+}
+
+void World::set_sleep_settings(const SleepSettings& s) {
+  require_not_stepping(*this, "change the sleep settings");
+  const std::string problem = sleep_settings_problem(s);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  sleep_settings_ = s;
+}
+
+void World::wake(BodyId id) {
+  require_not_stepping(*this, "wake a body");
+  if (!store_->contains(id)) throw std::invalid_argument("the body is not in this world");
+  const Body& b = store_->get(id);
+  if (b.sleeping) Islands::wake_island(bodies(), b.island);
+}
+
+void World::wake_all() { Islands::wake_all(bodies()); }
+
+std::size_t World::sleeping_count() const {
+  return static_cast<std::size_t>(std::count_if(bodies().begin(), bodies().end(),
+                                                [](const Body& b) { return b.sleeping; }));
+}
+
+// The joints the solver sees while islands sleep: those with no frozen body (a joint inside a
+// sleeping island keeps its impulses for the warm start when the island wakes).
+const std::vector<Solver::JointRef>& World::awake_joints() {
+  awake_joint_refs_.clear();
+  for (const Solver::JointRef& j : joint_refs_)
+    if (!islands_.frozen(j.a) && (j.b == no_body || !islands_.frozen(j.b)))
+      awake_joint_refs_.push_back(j);
+  return awake_joint_refs_;
+}
+
+// After the contacts of a substep are found: wakes the sleeping islands an awake dynamic
+// body has a contact with. True when one woke (the substep is then prepared again).
+bool World::wake_touched() {
+  std::vector<Body>& b = bodies();
+  const ContactConstraints& contacts = solver_.contact_constraints();
+  const std::size_t n = b.size();
+  auto awake_dynamic = [&](std::size_t i) {
+    return i < n && !islands_.frozen(i) && !is_static(b[i]);
+  };
+  bool woke = false;
+  for (std::size_t m = 0; m < contacts.manifold_count(); ++m) {
+    const auto [x, y] = contacts.manifold_slots(m);
+    for (const auto& [sleeper, other] : {std::pair{x, y}, std::pair{y, x}}) {
+      if (!islands_.frozen(sleeper) || !awake_dynamic(other)) continue;
+      islands_.wake_in_step(b, sleeper);
+      woke = true;
+    }
+  }
+  return woke;
+}
+
+// After a committed step: the islands through joints, springs and contacts (speculative ones
+// too: they are what wakes a sleeping island, engine/islands.hpp), the timers, and the
+// islands that fall asleep.
+void World::sleep_stage(double dt) {
+  std::vector<Body>& b = bodies();
+  const BodyStore& store = *store_;
+  islands_.begin_links(b.size());
+  for (const Solver::JointRef& j : joint_refs_) islands_.link(b, j.a, j.b);
+  for (const SpringRef& s : spring_refs_) islands_.link(b, s.a, s.b);
+  if (has_constraints())
+    for (const ContactInfo& c : solver_.contacts())
+      if (store.contains(c.a) && store.contains(c.b))
+        islands_.link(b, store.index_of(c.a), store.index_of(c.b));
+  islands_.finish(b, store.ids(), dt, sleep_settings_, callbacks_.empty());
 }
 
 void World::add_step_observer(std::shared_ptr<StepObserver> observer) {

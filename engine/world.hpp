@@ -20,6 +20,7 @@
 #include "engine/contact_constraints.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrators.hpp"
+#include "engine/islands.hpp"
 #include "engine/plane.hpp"
 #include "engine/solver.hpp"
 
@@ -82,6 +83,15 @@ class World {
   void set_solver(SolverKind kind);
   int substeps() const { return substeps_; }
   void set_substeps(int n);  // 1 .. max_substeps
+
+  // ---- sleeping islands (engine/islands.hpp; off by default) ----
+  bool sleeping() const { return sleeping_; }
+  void set_sleeping(bool on);  // off wakes every body
+  const SleepSettings& sleep_settings() const { return sleep_settings_; }
+  void set_sleep_settings(const SleepSettings& s);  // std::invalid_argument if bad
+  // Wakes the island of the body (its id must be in this world); nothing if it is awake.
+  void wake(BodyId id);
+  std::size_t sleeping_count() const;
 
   // ---- bodies (std::logic_error during a step) ----
   // Adds a copy of b (its state must be finite); returns its id.
@@ -184,6 +194,11 @@ class World {
   std::size_t free_substep(double t, double h, BodyState* save_to);
   void save_step(bool with_bodies);
   void restore_step();
+  // The sleep stage (engine/islands.hpp): wakes in a substep, islands after a step.
+  const std::vector<Solver::JointRef>& awake_joints();
+  bool wake_touched();
+  void sleep_stage(double dt);
+  void wake_all();
   [[noreturn]] void throw_non_finite(std::size_t index, double t0, double t1, long count) const;
 
   std::shared_ptr<BodyStore> store_;
@@ -214,6 +229,13 @@ class World {
   StageWorkspace stages_;
   Rk4Workspace rk4_;
   std::function<void(double)> stage_forces_;  // evaluate_forces, bound once for rk4_step
+  // Sleeping: the setting, the islands, the joints of awake bodies and the accumulators of a
+  // substep that may be prepared again when a contact wakes an island.
+  bool sleeping_ = false;
+  SleepSettings sleep_settings_;
+  Islands islands_;
+  std::vector<Solver::JointRef> awake_joint_refs_;
+  std::vector<std::pair<Vec3, Vec3>> accumulators_;
 };
 
 }  // namespace rigidlab

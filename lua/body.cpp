@@ -65,10 +65,23 @@ void get_size(lua_State* L, int object, const Property&) {
   else lua_pushnil(L);
 }
 
+// What the user changes on a sleeping body wakes its island (engine/islands.hpp), as Box2D's
+// setters do. During a step (a force callback) no body sleeps: the world has a callback.
+void wake(const BodyHandle& handle) {
+  World* w = handle.store->world();
+  if (w != nullptr && !handle.store->stepping() && handle.body().sleeping) w->wake(handle.id);
+}
+
 void set_position(lua_State* L, int object, int value, const Where& where, const Property&) {
   const Vec3 p = check_vec3(L, value, where);
   check_body(L, object).position = p;
+  wake(check_body_handle(L, object));
 }
+
+void get_sleeping(lua_State* L, int object, const Property&) {
+  lua_pushboolean(L, check_body(L, object).sleeping);
+}
+
 
 // velocity and angular_velocity: a static body's stay zero.
 template <Vec3 Body::*member>
@@ -79,6 +92,7 @@ void set_motion(lua_State* L, int object, int value, const Where& where, const P
     where.error(L, "must be zero for a static body (it never moves), got %s",
                 push_shown_value(L, value));
   b.*member = v;
+  wake(check_body_handle(L, object));
 }
 
 void set_orientation(lua_State* L, int object, int value, const Where& where, const Property&) {
@@ -88,6 +102,7 @@ void set_orientation(lua_State* L, int object, int value, const Where& where, co
   if (is_zero(*q)) where.error(L, "must be a rotation, got the zero quaternion");
   const Quat rotation = unit(*q);
   check_body(L, object).orientation = rotation;
+  wake(check_body_handle(L, object));
 }
 
 // restitution e in [0, 1] and friction μ >= 0: engine/plane.hpp's material rules, for bodies
@@ -103,11 +118,13 @@ double check_friction(lua_State* L, int value, const Where& where) {
 void set_restitution(lua_State* L, int object, int value, const Where& where, const Property&) {
   const double e = check_restitution(L, value, where);
   check_body(L, object).restitution = e;
+  wake(check_body_handle(L, object));
 }
 
 void set_friction(lua_State* L, int object, int value, const Where& where, const Property&) {
   const double mu = check_friction(L, value, where);
   check_body(L, object).friction = mu;
+  wake(check_body_handle(L, object));
 }
 
 constexpr const char* made_fixed = "mass properties and shape are fixed when the body is made";
@@ -125,6 +142,11 @@ const Property properties[] = {
      "e in [0, 1] (default 0): contacts use max(ea, eb)", nullptr, nullptr},
     {"friction", get_member<double, &Body::friction>, set_friction,
      "Coulomb μ >= 0 (default 0.6): contacts use √(μa μb)", nullptr, nullptr},
+    {"sleeping", get_sleeping, nullptr,
+     "true while the body's island sleeps (world.sleeping; b:wake() wakes it)",
+     "bodies fall asleep by themselves, a whole island at rest at a time, when world.sleeping "
+     "is on; b:wake() wakes the body's island",
+     nullptr},
     {"mass", get_member<double, &Body::mass>, nullptr, "kg (math.huge: static)", made_fixed,
      nullptr},
     {"inv_mass", get_member<double, &Body::inverse_mass>, nullptr, "1/kg (0: static)",
@@ -337,6 +359,7 @@ int body_apply_force(lua_State* L) {
     arg_error(L, 2, "the accumulated force or torque would overflow");
   b.force = candidate.force;
   b.torque = candidate.torque;
+  wake(check_body_handle(L, 1));
   return 0;
 }
 
@@ -346,6 +369,7 @@ int body_apply_torque(lua_State* L) {
   check_no_extra_args(L, 2);
   if (!is_finite(Vec3(b.torque + t))) arg_error(L, 2, "the accumulated torque would overflow");
   apply_torque(b, t);
+  wake(check_body_handle(L, 1));
   return 0;
 }
 
@@ -367,6 +391,7 @@ int body_apply_impulse(lua_State* L) {
   Body candidate = handle.body();
   apply_impulse(candidate, j, point);
   commit_velocities(L, handle.body(), candidate);
+  wake(check_body_handle(L, 1));
   return 0;
 }
 
@@ -378,6 +403,7 @@ int body_apply_angular_impulse(lua_State* L) {
   Body candidate = handle.body();
   apply_angular_impulse(candidate, h);
   commit_velocities(L, handle.body(), candidate);
+  wake(check_body_handle(L, 1));
   return 0;
 }
 
@@ -397,6 +423,15 @@ int vec3_method(lua_State* L) {
   check_no_extra_args(L, 1);
   push_finite(L, compute(b), 1);
   return 1;
+}
+
+// b:wake(): wakes the body's island (engine/islands.hpp); nothing for an awake or lone body.
+int body_wake(lua_State* L) {
+  BodyHandle& handle = check_body_handle(L, 1);
+  check_no_extra_args(L, 1);
+  check_not_stepping(L, 1, handle, "wake a body");
+  wake(handle);
+  return 0;
 }
 
 int body_kinetic_energy(lua_State* L) {
@@ -440,6 +475,10 @@ const Entry methods[] = {
     {"angular_momentum", vec3_method<angular_momentum>, "body:angular_momentum",
      "b:angular_momentum() -> vec3",
      "Angular momentum about the COM in world axes, I_world ω (kg m²/s)."},
+    {"wake", body_wake, "body:wake", "b:wake()",
+     "Wakes the body's sleeping island (world.sleeping): its bodies move again from rest.\n"
+     "Nothing for an awake body. Changing a body's state or applying a force, torque or\n"
+     "impulse wakes its island too."},
     {"kinetic_energy", body_kinetic_energy, "body:kinetic_energy", "b:kinetic_energy() -> number",
      "½ m v·v + ½ ω·I_world ω (J); zero for a static body."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};

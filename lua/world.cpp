@@ -10,6 +10,7 @@
 // after the world is collected.
 #include "lua/world.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -156,6 +157,37 @@ void set_substeps(lua_State* L, int object, int value, const Where& where, const
   protect(L, [&] { w.set_substeps(n); });
 }
 
+// Sleeping islands (engine/islands.hpp).
+void get_sleeping(lua_State* L, int object, const Property&) {
+  lua_pushboolean(L, check_world(L, object).world.sleeping());
+}
+
+void set_sleeping(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const bool on = check_boolean(L, value, where);
+  World& w = check_world(L, object).world;
+  protect(L, [&] { w.set_sleeping(on); });
+}
+
+void get_sleeping_count(lua_State* L, int object, const Property&) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check_world(L, object).world.sleeping_count()));
+}
+
+// sleep_linear, sleep_angular, sleep_time: the member of SleepSettings named by the property.
+template <double SleepSettings::*member>
+void get_sleep_setting(lua_State* L, int object, const Property&) {
+  lua_pushnumber(L, check_world(L, object).world.sleep_settings().*member);
+}
+
+template <double SleepSettings::*member>
+void set_sleep_setting(lua_State* L, int object, int value, const Where& where, const Property&) {
+  const double x = check_number(L, value, where, 0.0, HUGE_VAL, "finite and > 0");
+  if (!(x > 0.0)) where.error(L, "must be finite and > 0, got %s", push_shown_value(L, value));
+  World& w = check_world(L, object).world;
+  SleepSettings s = w.sleep_settings();
+  s.*member = x;
+  protect(L, [&] { w.set_sleep_settings(s); });
+}
+
 const Property properties[] = {
     {"time", get_time, nullptr, "s, the world's clock", "it advances with w:step", nullptr},
     {"gravity", get_gravity, set_gravity, "vec3, m/s², default vec3(0, -9.81, 0)", nullptr,
@@ -166,6 +198,20 @@ const Property properties[] = {
      "how the Euler methods treat ω × Iω (see above); not for rk4", nullptr, nullptr},
     {"substeps", get_substeps, set_substeps, "equal substeps per w:step(dt), default 1", nullptr,
      nullptr},
+    {"sleeping", get_sleeping, set_sleeping,
+     "boolean, default false: islands at rest fall asleep (see world); false wakes all",
+     nullptr, nullptr},
+    {"sleep_linear", get_sleep_setting<&SleepSettings::linear>,
+     set_sleep_setting<&SleepSettings::linear>, "m/s, default 0.05: slower counts as at rest",
+     nullptr, nullptr},
+    {"sleep_angular", get_sleep_setting<&SleepSettings::angular>,
+     set_sleep_setting<&SleepSettings::angular>,
+     "rad/s, default 2°/s (0.0349): slower counts as at rest", nullptr, nullptr},
+    {"sleep_time", get_sleep_setting<&SleepSettings::time>,
+     set_sleep_setting<&SleepSettings::time>,
+     "s, default 0.5: how long a whole island must be at rest to fall asleep", nullptr, nullptr},
+    {"sleeping_count", get_sleeping_count, nullptr, "the number of sleeping bodies",
+     "it counts what the steps put to sleep", nullptr},
     {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 // ---- constructor and finaliser ---------------------------------------------------------------
@@ -342,7 +388,7 @@ const Entry metamethods[] = {
 
 const Entry call_entry[] = {
     {"__call", world_call, "world",
-     "world{gravity =, integrator =, gyroscopic =, substeps =, ...} -> world",
+     "world{gravity =, integrator =, gyroscopic =, substeps =, sleeping =, ...} -> world",
      "A world of rigid bodies; the option table sets any of the settable fields below.\n"
      "integrator: \"euler\" (explicit: positions from the old velocities), \"semi_implicit\"\n"
      "(default; velocities first, positions from the new ones) or \"rk4\" (classical 4th\n"
@@ -352,6 +398,13 @@ const Entry call_entry[] = {
      "ω × Iω per substep: stable, but loses energy and ‖L‖), \"explicit\" (gains energy) or\n"
      "\"off\" (refused on an rk4 world, which would ignore it; switching to rk4 needs the\n"
      "default gyroscopic setting); substeps (default 1) per w:step(dt).\n"
+     "sleeping (default false, opt-in): an island of bodies (linked by touching contacts,\n"
+     "joints and springs; the floor links nothing) whose every body has moved slower than\n"
+     "sleep_linear and sleep_angular for sleep_time falls asleep: its velocities are set to\n"
+     "zero (they were below the tolerances) and the steps skip it until an awake body touches\n"
+     "it or you change one of its bodies (b:wake() wakes it). Off by default: a\n"
+     "small pendulum or a slowly rolling ball must not freeze unless you ask. A world with a\n"
+     "force callback keeps every body awake.\n"
      "Contacts: bodies with a shape collide with each other and with planes (w:add_plane)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 

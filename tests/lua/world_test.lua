@@ -344,7 +344,7 @@ T.case("constructor and field errors", function()
     "bad argument #1 to 'world' (field 'gravity' must be a vec3, got number)")
   T.fails(function() return world{gravty = vec3()} end,
     "bad argument #1 to 'world' (unknown field 'gravty' (fields are: gravity, integrator, gyroscopic, "
-    .. "substeps, solver, iterations, relax_iterations, position_iterations, "
+    .. "substeps, sleeping, sleep_linear, sleep_angular, sleep_time, solver, iterations, relax_iterations, position_iterations, "
     .. "restitution_threshold, slop, baumgarte, max_correction, contact_hertz, "
     .. "contact_damping_ratio, joint_hertz, joint_damping_ratio, contact_push_speed, "
     .. "speculative_distance))")
@@ -367,7 +367,7 @@ T.case("constructor and field errors", function()
     "bad field 'substeps' of world (must be an integer from 1 to 10000, got -1)")
   T.fails(function() w.bodies = {} end,
     "bad field 'bodies' of world (no such field; the settable fields are gravity, integrator, "
-    .. "gyroscopic, substeps, solver, iterations, relax_iterations, position_iterations, "
+    .. "gyroscopic, substeps, sleeping, sleep_linear, sleep_angular, sleep_time, solver, iterations, relax_iterations, position_iterations, "
     .. "restitution_threshold, slop, baumgarte, max_correction, contact_hertz, "
     .. "contact_damping_ratio, joint_hertz, joint_damping_ratio, contact_push_speed, "
     .. "speculative_distance)")
