@@ -57,17 +57,25 @@ std::string contact_settings_problem(const ContactSettings& s) {
 // ---- warm starting -----------------------------------------------------------------------------
 
 // The previous step's points of manifold m's pair (same bodies or plane): [first, last) of
-// contacts_, found once per manifold.
+// contacts_, found once per manifold. `hint` is where the pair's points would be if they
+// followed the previous manifold's (the manifolds of a body's pairs come in the order of
+// contacts_): checked first, a binary search when they do not start there.
 std::pair<const ContactInfo*, const ContactInfo*> ContactConstraints::previous_points(
-    const Manifold& m) const {
-  auto less = [](const ContactInfo& info, const auto& k) { return sort_key(info) < k; };
-  const ContactInfo* first =
-      contacts_.data() + (std::lower_bound(contacts_.begin(), contacts_.end(),
-                                           sort_key(m.id_a, m.id_b, m.plane, 0), less) -
-                          contacts_.begin());
-  const ContactInfo* end = contacts_.data() + contacts_.size();
+    const Manifold& m, const ContactInfo* hint) const {
+  const ContactInfo* begin = contacts_.data();
+  const ContactInfo* end = begin + contacts_.size();
+  auto same_pair = [&m](const ContactInfo& info) {
+    return info.a == m.id_a && info.b == m.id_b && info.plane == m.plane;
+  };
+  const ContactInfo* first = hint;
+  if (!(hint != end && same_pair(*hint) && (hint == begin || !same_pair(hint[-1])))) {
+    auto less = [](const ContactInfo& info, const auto& k) { return sort_key(info) < k; };
+    first = begin + (std::lower_bound(contacts_.begin(), contacts_.end(),
+                                      sort_key(m.id_a, m.id_b, m.plane, 0), less) -
+                     contacts_.begin());
+  }
   const ContactInfo* last = first;
-  while (last != end && last->a == m.id_a && last->b == m.id_b && last->plane == m.plane) ++last;
+  while (last != end && same_pair(*last)) ++last;
   return {first, last};
 }
 
@@ -101,10 +109,12 @@ void ContactConstraints::warm_start(SolverBody* solver) {
   // Impulses scale with the step: a resting contact carries m g Δt.
   const double scale = last_dt_ > 0.0 ? h_ / last_dt_ : 1.0;
   cold_points_ = 0;
+  const ContactInfo* hint = contacts_.data();
   for (Manifold& m : manifolds_) {
     SolverBody& a = solver[m.a];
     SolverBody& b = solver[m.b];
-    const auto [first, last] = previous_points(m);
+    const auto [first, last] = previous_points(m, hint);
+    hint = last;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
       const ContactInfo* found = previous_point(p, first, last);
@@ -484,8 +494,12 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
       for (int t = 0; t < taken; ++t) key |= static_cast<std::uint16_t>(1u << (4 + taking[t]));
       if (n > 0) {
         // Γ is the same for all the points of a manifold (0 or its compliance).
-        SubsetFactor& factor = blocks_[manifold].subset[gamma[index[0]] != 0.0 ? 1 : 0];
-        if (factor.key != key) {
+        // Two kept per softness: a subset settled in two passes frees two sets of rows.
+        SubsetFactor* kept_factors = blocks_[manifold].subset[gamma[index[0]] != 0.0 ? 1 : 0];
+        const bool second = kept_factors[1].key == key;
+        SubsetFactor& factor = kept_factors[second ? 1 : 0];
+        if (!second && factor.key != key) {
+          std::swap(kept_factors[0], kept_factors[1]);  // the older one is replaced
           Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
           for (int r = 0; r < n; ++r) {
             const int i = index[r];
@@ -655,7 +669,7 @@ Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
 void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Manifold& m = manifolds_[manifold];
   m.block = false;
-  blocks_[manifold].subset[0].key = blocks_[manifold].subset[1].key = SubsetFactor::none;
+  for (auto& kept : blocks_[manifold].subset) kept[0].key = kept[1].key = SubsetFactor::none;
   const int count = static_cast<int>(m.count);
   if (count < 2) return;
   const SolverBody& a = found_with_[m.a];

@@ -279,7 +279,7 @@ class ContactConstraints {
     Mat4 rigid_inverse;  // K⁺
     Mat4 soft_inverse;   // (K + Γ)⁻¹ on the range of K
     Vec4 null;           // c, the unit null vector of K of four points (else zero)
-    SubsetFactor subset[2];  // the last subset solved, rigid and soft (solve_subset)
+    SubsetFactor subset[2][2];  // the last subsets solved, rigid and soft (solve_subset)
   };
 
   // contact_finder.cpp
@@ -296,7 +296,8 @@ class ContactConstraints {
   double landed_tolerance() const { return 1e-3 * touch_tolerance_; }
 
   // contact_constraints.cpp
-  std::pair<const ContactInfo*, const ContactInfo*> previous_points(const Manifold& m) const;
+  std::pair<const ContactInfo*, const ContactInfo*> previous_points(const Manifold& m,
+                                                                    const ContactInfo* hint) const;
   const ContactInfo* previous_point(const Point& p, const ContactInfo* first,
                                     const ContactInfo* last) const;
   // The rigid block matrices, and the soft ones (push sweeps) with soft_too.
