@@ -448,6 +448,14 @@ int joint_error(lua_State* L) {
   return 2;
 }
 
+// A changed joint wakes its bodies' sleeping island (engine/islands.hpp): a new motor target
+// must not wait for something else to wake them.
+void wake_bodies(const Resolved& r) {
+  World& w = r.world->world;
+  w.wake(r.joint->body_a());
+  if (r.joint->body_b().valid()) w.wake(r.joint->body_b());
+}
+
 // j:set_motor / j:set_spring: reads the table (or nil) at argument 2 with `read`, then
 // changes the joint with `set`.
 template <class T, class Read, class Set>
@@ -461,7 +469,10 @@ int set_drive(lua_State* L, Read read, Set set, const char* what) {
   }
   const Resolved r = resolve(L, 1);
   if (r.world->world.stepping()) stepping_error(L, 1, what);
-  protect(L, 2, [&] { set(*r.joint, drive); });
+  protect(L, 2, [&] {
+    set(*r.joint, drive);
+    wake_bodies(r);
+  });
   return 0;
 }
 
@@ -488,7 +499,10 @@ int joint_set_limits(lua_State* L) {
                                                             -HUGE_VAL, HUGE_VAL, "a number");
   const Resolved r = resolve(L, 1);
   if (r.world->world.stepping()) stepping_error(L, 1, "change a joint's limits");
-  protect(L, 2, [&] { r.joint->set_limits(lower, upper); });
+  protect(L, 2, [&] {
+    r.joint->set_limits(lower, upper);
+    wake_bodies(r);
+  });
   return 0;
 }
 

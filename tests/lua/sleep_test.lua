@@ -137,6 +137,22 @@ T.case("bad input", function()
   T.fails(function() w.sleeping_count = 3 end, "sleeping_count")
 end)
 
+T.case("a hanging hinge pendulum sleeps; a new motor wakes it and turns it", function()
+  local w = world{sleeping = true}
+  local bob = w:add(body.sphere{mass = 1, radius = 0.1, position = vec3(0, -1, 0)})
+  local j = w:add_joint{type = "hinge", a = bob, anchor = vec3(0, 0, 0), axis = vec3(0, 0, 1)}
+  assert(step_until_asleep(w, 2), "the hanging bob never slept")
+  j:set_motor{target_rate = 1, kv = 50}
+  T.equal(bob.sleeping, false, "after j:set_motor")
+  w:step(dt, 30)
+  assert(bob.position.x > 0.1, "the motor turned the bob: x = " .. bob.position.x)
+  assert(step_until_asleep(w, 1) == nil, "a driven pendulum never sleeps")
+  j:set_motor(nil)
+  w.sleeping = false
+  w.sleeping = true
+  T.equal(bob.sleeping, false, "w.sleeping = false woke it")
+end)
+
 T.case("a lone body is awake and can be woken harmlessly", function()
   local b = body.sphere{mass = 1, radius = 1}
   T.equal(b.sleeping, false, "lone body")
