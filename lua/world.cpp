@@ -202,7 +202,8 @@ const Property properties[] = {
      "boolean, default false: islands at rest fall asleep (see world); false wakes all",
      nullptr, nullptr},
     {"sleep_linear", get_sleep_setting<&SleepSettings::linear>,
-     set_sleep_setting<&SleepSettings::linear>, "m/s, default 0.05: slower counts as at rest",
+     set_sleep_setting<&SleepSettings::linear>,
+     "m/s, default 0.05: a slower body (or every point of one with a shape) is at rest",
      nullptr, nullptr},
     {"sleep_angular", get_sleep_setting<&SleepSettings::angular>,
      set_sleep_setting<&SleepSettings::angular>,
@@ -398,13 +399,14 @@ const Entry call_entry[] = {
      "ω × Iω per substep: stable, but loses energy and ‖L‖), \"explicit\" (gains energy) or\n"
      "\"off\" (refused on an rk4 world, which would ignore it; switching to rk4 needs the\n"
      "default gyroscopic setting); substeps (default 1) per w:step(dt).\n"
-     "sleeping (default false, opt-in): an island of bodies (linked by touching contacts,\n"
-     "joints and springs; the floor links nothing) whose every body has moved slower than\n"
-     "sleep_linear and sleep_angular for sleep_time falls asleep: its velocities are set to\n"
-     "zero (they were below the tolerances) and the steps skip it until an awake body touches\n"
-     "it or you change one of its bodies (b:wake() wakes it). Off by default: a\n"
-     "small pendulum or a slowly rolling ball must not freeze unless you ask. A world with a\n"
-     "force callback keeps every body awake.\n"
+     "sleeping (default false, opt-in): an island of bodies (linked by contacts, touching or\n"
+     "within the speculative distance, joints and springs; the floor links nothing) whose\n"
+     "every body has moved slower than sleep_linear and turned slower than sleep_angular (or,\n"
+     "with a shape, whose every point moved slower than sleep_linear) for sleep_time falls\n"
+     "asleep: its velocities are set to zero (they were below the tolerances) and the steps\n"
+     "skip it until an awake body touches it or you change one of its bodies or joints\n"
+     "(b:wake() wakes it). Off by default: a small pendulum or a slowly rolling ball must not\n"
+     "freeze unless you ask. A world with a force callback keeps every body awake.\n"
      "Contacts: bodies with a shape collide with each other and with planes (w:add_plane)."},
     {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
