@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
 #include "engine/broad_phase.hpp"
+#include "engine/constraint_row.hpp"
 #include "tests/engine/allocation_counter.hpp"  // replaces operator new: counts allocations
 
 namespace rigidlab {
@@ -115,3 +117,14 @@ TEST(BroadPhaseAllocations, NoneAfterReserve) {
 
 }  // namespace
 }  // namespace rigidlab
+
+// The solver bodies are over-aligned (engine/constraint_row.hpp): their vectors allocate through
+// operator new(size, align_val_t), which the counter must see too, or the world's
+// no-allocation tests would pass whatever the solver arrays did.
+TEST(BroadPhaseAllocations, CounterSeesOverAlignedAllocations) {
+  static_assert(alignof(rigidlab::SolverBody) > __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+  const long before = allocations.load();
+  std::vector<rigidlab::SolverBody> bodies(3);
+  EXPECT_EQ(allocations.load() - before, 1);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(bodies.data()) % alignof(rigidlab::SolverBody), 0u);
+}
