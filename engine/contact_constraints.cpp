@@ -110,9 +110,13 @@ void ContactConstraints::warm_start(SolverBody* solver) {
   const double scale = last_dt_ > 0.0 ? h_ / last_dt_ : 1.0;
   cold_points_ = 0;
   const ContactInfo* hint = contacts_.data();
+  patches_.resize(manifolds_.size());
   for (Manifold& m : manifolds_) {
     SolverBody& a = solver[m.a];
     SolverBody& b = solver[m.b];
+    const std::size_t index = static_cast<std::size_t>(&m - manifolds_.data());
+    prepare_patch(index, a, b);  // contact_friction.cpp
+    const bool patch = patches_[index].active;
     const auto [first, last] = previous_points(m, hint);
     hint = last;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
@@ -126,9 +130,11 @@ void ContactConstraints::warm_start(SolverBody* solver) {
       p.tangent1.impulse = scale * found->friction_impulse.dot(p.tangent1.jacobian.linear);
       p.tangent2.impulse = scale * found->friction_impulse.dot(p.tangent2.jacobian.linear);
       apply_row(p.normal, a, b, p.normal.impulse);
+      if (patch) continue;
       apply_row(p.tangent1, a, b, p.tangent1.impulse);
       apply_row(p.tangent2, a, b, p.tangent2.impulse);
     }
+    if (patch) warm_start_patch(index);
   }
 }
 
@@ -207,6 +213,10 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
         row->jacobian = point_jacobian(row->jacobian.linear, p.r_a, p.r_b);
         prepare_row(*row, a, b);
       }
+    }
+    if (patches_[mi].active) {  // its impulses stay on the points if it cannot be prepared
+      spread_patch(mi);
+      prepare_patch(mi, a, b);
     }
     prepare_block(mi, false);
   }
@@ -301,6 +311,8 @@ bool ContactConstraints::normal_bias(const Manifold& m, const Point& p, NormalMo
 // (its top ±1 cm in z after 10 s; now 0.6 mm).
 void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   if (!(m.friction > 0.0)) return;
+  const std::size_t index = static_cast<std::size_t>(&m - manifolds_.data());
+  if (patches_[index].active) return solve_patch(index);  // contact_friction.cpp
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
   // The velocities in locals for the manifold's points: the stores of the impulses could
@@ -737,6 +749,7 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
 // The points go out in the order of contacts() (sort_key): the manifolds sorted by their
 // pair (one manifold per pair), each one's points by feature, instead of sorting every point.
 void ContactConstraints::store(double h) {
+  for (std::size_t i = 0; i < manifolds_.size(); ++i) spread_patch(i);
   next_contacts_.clear();
   order_.resize(manifolds_.size());
   for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<std::uint32_t>(i);

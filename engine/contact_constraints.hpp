@@ -10,6 +10,11 @@
 // friction of each point, then the normals (as a block, below).
 //
 // Details, each a named scheme:
+// - Patch friction (engine/contact_friction.cpp): a flat manifold (2-4 points, no sphere)
+//   holds its friction as one patch instead of two rows per point: two tangent rows at the
+//   centre of its points and a twist row about the normal, solved as a 3 x 3 block within μ of
+//   the manifold's whole load (PhysX's patch friction). The points keep their share of the
+//   patch's impulse for the reports and the warm start.
 // - Friction directions: the first tangent along the point's slip (tangential relative
 //   velocity) before the solve, the second across it; any orthonormal pair when it does not
 //   slip (Duff et al., JCGT 2017). Sliding friction then opposes the slip, as Coulomb's law.
@@ -329,6 +334,21 @@ class ContactConstraints {
   void link_bodies();
   void gather_round(int hops);
   double round_sweep(bool forward);
+
+  // contact_friction.cpp: the friction of a flat manifold as one patch (see there).
+  struct Patch {
+    ConstraintRow rows[3];  // the two tangents at the centre, the twist about the normal
+    Eigen::Matrix<double, 3, 3, Eigen::DontAlign> inverse;  // (J W Jᵀ)⁻¹ of the rows
+    Vec3 r_a, r_b;          // m, the centre's lever arms
+    double distance[max_manifold_points];  // m, each point's from the centre, in the plane
+    double spread;          // m², Σ distance²
+    bool active;            // else each point has its own friction rows
+  };
+  void prepare_patch(std::size_t manifold, const SolverBody& a, const SolverBody& b);
+  void warm_start_patch(std::size_t manifold);
+  void solve_patch(std::size_t manifold);
+  void spread_patch(std::size_t manifold);
+  std::vector<Patch> patches_;  // by manifold
 
   // contact_positions.cpp
   void witnesses(const std::vector<Body>& bodies, const Manifold& m, const Point& p, Vec3& pa,

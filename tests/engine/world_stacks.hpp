@@ -2,8 +2,10 @@
 // and bench/contacts_bench.cpp (their cost).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "engine/world.hpp"
 
@@ -22,6 +24,35 @@ inline BodyId build_stack(World& w, int base, bool pyramid) {
       box.position = Vec3(k - 0.5 * (count - 1), 0.5 + row, 0);
       top = w.add(box);
     }
+  }
+  return top;
+}
+
+// The pyramid of build_stack with what should not matter changed (tests/engine/
+// pyramid_creep_test.cpp): the order its boxes are added in (which orders the contacts and so
+// the solve: `added` in rows from the bottom, reversed, or shuffled by `seed`) and each box's
+// position moved by up to `jitter` (m) along each axis. Returns the id of the top box.
+enum class AddOrder { bottom_up, top_down, shuffled };
+inline BodyId build_pyramid(World& w, int base, AddOrder added, double jitter,
+                            unsigned seed = 7) {
+  w.add_plane(make_plane(Vec3(0, 1, 0), 0.0, 0.0, default_friction));
+  struct Slot {
+    int row, k;
+  };
+  std::vector<Slot> slots;
+  for (int row = 0; row < base; ++row)
+    for (int k = 0; k < base - row; ++k) slots.push_back({row, k});
+  std::mt19937 rng(seed);
+  if (added == AddOrder::top_down) std::reverse(slots.begin(), slots.end());
+  if (added == AddOrder::shuffled) std::shuffle(slots.begin(), slots.end(), rng);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  BodyId top;
+  for (const Slot& s : slots) {
+    Body box = make_box_body(1.0, Vec3(1, 1, 1));
+    box.position = Vec3(s.k - 0.5 * (base - s.row - 1), 0.5 + s.row, 0) +
+                   jitter * Vec3(u(rng), u(rng), u(rng));
+    const BodyId id = w.add(box);
+    if (s.row == base - 1) top = id;
   }
   return top;
 }
