@@ -3,6 +3,7 @@
 // pendulum never sleeps, sleeping off changes nothing, the wake rules, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -136,41 +137,47 @@ TEST(Sleep, SettledHeapOfBallsFallsAsleep) {
   EXPECT_GT(step_until_asleep(w, 10.0), 0.0);
 }
 
-// Drops a 2 kg ball (restitution 0.5) from 1 m above the top box of a 3-box column that has
-// stood for 3 s (asleep when `sleeping`), and records the ball's vertical velocity each step.
+// Drops a 2 kg ball (restitution 0.5) from 1 m above the top box of a column of `boxes` unit
+// boxes that has stood for 3 s (asleep when `sleeping`), and records the ball's vertical
+// velocity each step.
 struct DropResult {
   std::vector<double> ball_velocity;  // m/s, after each step
-  bool woke = false;                  // the column woke while the ball fell
+  bool woke = false;                  // every box of the column woke while the ball fell
   std::vector<unsigned char> bytes;
 };
 
-DropResult drop_ball_on_column(bool sleeping) {
+DropResult drop_ball_on_column(bool sleeping, int boxes) {
   World w;
-  build_stack(w, 3, false);
+  build_stack(w, boxes, false);
   w.set_sleeping(sleeping);
   for (int k = 0; k < 180; ++k) w.step(dt);
-  EXPECT_EQ(count_sleeping(w), sleeping ? 3u : 0u);
+  EXPECT_EQ(count_sleeping(w), sleeping ? std::size_t(boxes) : 0u);
   Body ball = make_sphere_body(2.0, 0.25);
-  ball.position = Vec3(0.1, 3.0 + 1.0 + 0.25, 0.05);
+  ball.position = Vec3(0.1, boxes + 1.0 + 0.25, 0.05);
   ball.restitution = 0.5;
   const BodyId id = w.add(ball);
   DropResult r;
   for (int k = 0; k < 45; ++k) {  // 0.75 s: the ball lands at 0.45 s
     w.step(dt);
-    if (sleeping && !w.bodies()[2].sleeping) r.woke = true;
     r.ball_velocity.push_back(w.store().get(id).velocity.y());
   }
+  r.woke = count_sleeping(w) == 0;
   r.bytes = state_bytes(w);
   return r;
 }
 
-// The ball wakes the sleeping column and bounces off it as off the awake column: at every
-// step, its momentum differs from the run without sleeping by less than 1 % of its impact
-// momentum 2 kg × √(2 g · 1 m). The bounce itself is checked against e = 0.5: it leaves
-// upward with 0.5 × 4.43 m/s up to what the column's give takes (within 20 %).
-TEST(Sleep, BallWakesSleepingColumnAndBouncesAsOffTheAwakeOne) {
-  const DropResult asleep = drop_ball_on_column(true);
-  const DropResult awake = drop_ball_on_column(false);
+// The ball wakes the sleeping box and bounces off it as off the awake one, and as the closed
+// form: a box resting on the floor is a rigid support, so the ball leaves on the reflected
+// parabola, e √(2 g h) at the surface, which the step's end velocity shows as e √(2 g h) +
+// g Δt/2 (engine/contact_constraints.hpp, restitution). One box, not a column: on a column of
+// 2 or 3 boxes the rebound is 1.90–2.21 m/s instead of 2.30, and which of these it is depends
+// on micrometre differences of the column's state (the drop height by 3 cm, waking the column
+// a step earlier or later: with sleeping off as well), so a sleeping column could not be
+// compared with an awake one at 1 %. That is a restitution defect of its own (a ball on a
+// stack), not one of sleeping.
+TEST(Sleep, BallWakesSleepingBoxAndBouncesAsOffTheAwakeOne) {
+  const DropResult asleep = drop_ball_on_column(true, 1);
+  const DropResult awake = drop_ball_on_column(false, 1);
   EXPECT_TRUE(asleep.woke);
   const double impact = std::sqrt(2.0 * 9.81 * 1.0);
   double rebound = 0.0;
@@ -179,9 +186,18 @@ TEST(Sleep, BallWakesSleepingColumnAndBouncesAsOffTheAwakeOne) {
         << "step " << k;
     rebound = std::max(rebound, asleep.ball_velocity[k]);
   }
-  EXPECT_NEAR(rebound, 0.5 * impact, 0.2 * 0.5 * impact);
+  EXPECT_NEAR(rebound, 0.5 * impact + 9.81 * dt / 2, 0.005 * 0.5 * impact);
   // Determinism: the same script, the same states.
-  EXPECT_EQ(drop_ball_on_column(true).bytes, asleep.bytes);
+  EXPECT_EQ(drop_ball_on_column(true, 1).bytes, asleep.bytes);
+}
+
+// A ball landing on the top of a sleeping column of three wakes the whole island, not only
+// the box it touches, and goes up again.
+TEST(Sleep, BallWakesAWholeSleepingColumn) {
+  const DropResult asleep = drop_ball_on_column(true, 3);
+  EXPECT_TRUE(asleep.woke);
+  EXPECT_GT(*std::max_element(asleep.ball_velocity.begin(), asleep.ball_velocity.end()), 0.0);
+  EXPECT_EQ(drop_ball_on_column(true, 3).bytes, asleep.bytes);
 }
 
 // A frictionless 1 kg box slides at 4 m/s into a sleeping 1 kg box (friction 0.6 on the
