@@ -430,11 +430,13 @@ void ContactConstraints::SubsetFactor::make(const Eigen::Matrix4d& matrix, int s
     data = matrix;
     data(3, 3) = det;
   } else if (n == 3) {
-    Eigen::Matrix3d inverse;
+    // Zeroed: Eigen leaves the inverse unwritten when the check fails (GCC 12 warns of the
+    // copy below), and the factor is then never used (ok is false).
+    Eigen::Matrix3d inverse = Eigen::Matrix3d::Zero();
     matrix.topLeftCorner<3, 3>().computeInverseWithCheck(inverse, ok, threshold);
     data.topLeftCorner<3, 3>() = inverse;
   } else {
-    Eigen::Matrix4d inverse;
+    Eigen::Matrix4d inverse = Eigen::Matrix4d::Zero();  // as above
     matrix.computeInverseWithCheck(inverse, ok, threshold);
     data = inverse;
   }
