@@ -47,14 +47,14 @@ type_text 'x:'
 key Tab
 # Ctrl-C is a signal, not a key in the input queue: sent before the REPL has read what was typed,
 # it would reach the REPL first and the typed text would stay on the next line ('x:5*5').
-wait_for "the REPL read 'x:' and the Tab" '^> x:'
+wait_for "the REPL read 'x:' and the Tab" '> x:$'
 sleep 0.3
 key C-c
 enter '5*5'
 wait_for "Tab on a value whose type loops in _G's __index returns" '^25$'
 type_text 'no_such_glo'
 key Tab
-wait_for "the REPL read 'no_such_glo' and the Tab" '^> no_such_glo'
+wait_for "the REPL read 'no_such_glo' and the Tab" '> no_such_glo$'
 sleep 0.3
 key C-c
 enter '4*4'
