@@ -94,6 +94,10 @@ void Islands::thaw(std::vector<Body>& bodies) {
       restore(bodies, f);
       state_[f.index] = State::frozen;  // still asleep: only its mass properties are back
     }
+  // Given back once: the list is of this step's bodies. Kept, a later thaw (the step's guard
+  // after the committed step's own thaw, or any step once sleeping is off) would give its
+  // mass properties to whatever body has that index by then, reading states finish() cleared.
+  frozen_.clear();
   frozen_count_ = 0;
 }
 

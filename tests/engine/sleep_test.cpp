@@ -373,6 +373,27 @@ TEST(Sleep, DisturbingABodyWakesItsIsland) {
   }
 }
 
+// Sleeping turned off, then a sleeping body removed: the other keeps its own mass properties
+// through the next steps (a body once frozen got the removed one's inverse mass back: a 10 kg
+// box then took a 10 N s blow as 1 kg, at 10 m/s).
+TEST(Sleep, MassPropertiesStayTheBodysOwnAfterSleepingIsOff) {
+  World w;
+  w.set_gravity(Vec3::Zero());
+  Body light = make_box_body(1.0, Vec3(1, 1, 1));
+  Body heavy = make_box_body(10.0, Vec3(1, 1, 1));
+  heavy.position = Vec3(5, 0, 0);
+  const BodyId a = w.add(light);
+  const BodyId b = w.add(heavy);
+  w.set_sleeping(true);
+  for (int k = 0; k < 60; ++k) w.step(dt);
+  ASSERT_EQ(count_sleeping(w), 2u);
+  w.set_sleeping(false);
+  w.remove(a);
+  for (int k = 0; k < 2; ++k) w.step(dt);
+  EXPECT_EQ(w.store().get(b).inverse_mass, 1.0 / 10.0);
+  EXPECT_EQ(w.store().get(b).inverse_inertia, heavy.inverse_inertia);
+}
+
 // Two islands: waking one leaves the other asleep; a static floor links nothing.
 TEST(Sleep, SeparateIslandsSleepAndWakeApart) {
   World w;
