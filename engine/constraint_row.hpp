@@ -134,10 +134,15 @@ inline void prepare_row(ConstraintRow& row, const SolverBody& a, const SolverBod
 }
 
 // J v: the row's velocity (m/s or rad/s).
+// J v of a Jacobian, from the pair's relative velocity dv = v_b − v_a and angular velocities
+// (a sweep that keeps a pair's velocities in locals passes those).
+inline double jacobian_velocity(const Jacobian& j, const Vec3& dv, const Vec3& w_a,
+                                const Vec3& w_b) {
+  return j.linear.dot(dv) + j.angular_b.dot(w_b) - j.angular_a.dot(w_a);
+}
 inline double row_velocity(const ConstraintRow& row, const SolverBody& a, const SolverBody& b) {
-  const Jacobian& j = row.jacobian;
-  return j.linear.dot(b.velocity - a.velocity) + j.angular_b.dot(b.angular_velocity) -
-         j.angular_a.dot(a.angular_velocity);
+  return jacobian_velocity(row.jacobian, b.velocity - a.velocity, a.angular_velocity,
+                           b.angular_velocity);
 }
 
 // Applies the impulse λ along the row: Δv = W Jᵀ λ.

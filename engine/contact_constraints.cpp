@@ -329,10 +329,8 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
     const Vec3 dv = vb - va;
     const Jacobian& j1 = p.tangent1.jacobian;
     const Jacobian& j2 = p.tangent2.jacobian;
-    double t1 = p.tangent1.impulse -
-                p.tangent1.mass * (j1.linear.dot(dv) + j1.angular_b.dot(wb) - j1.angular_a.dot(wa));
-    double t2 = p.tangent2.impulse -
-                p.tangent2.mass * (j2.linear.dot(dv) + j2.angular_b.dot(wb) - j2.angular_a.dot(wa));
+    double t1 = p.tangent1.impulse - p.tangent1.mass * jacobian_velocity(j1, dv, wa, wb);
+    double t2 = p.tangent2.impulse - p.tangent2.mass * jacobian_velocity(j2, dv, wa, wb);
     // Squares first: std::hypot's care against overflow cost a fifth of a pyramid's step, so
     // it is kept for the impulses whose squares overflow; and a point that sticks (inside the
     // disk, the usual case at rest) needs no square root at all.

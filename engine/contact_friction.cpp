@@ -39,13 +39,12 @@ Vec3 in_plane(const Vec3& v, const Vec3& n) { return v - n.dot(v) * n; }
 
 }  // namespace
 
-// The patch's rows at the arms the points have now (find, or positions_moved after the bodies
-// moved); its impulses are kept.
+// The patch's rows at the arms the points have now (warm_start, which then sets its impulses
+// from the points, or positions_moved after the bodies moved, which keeps them).
 void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a,
                                        const SolverBody& b) {
   const Manifold& m = manifolds_[manifold];
   Patch& patch = patches_[manifold];
-  const bool was = patch.active;
   patch.active = false;
   if (m.count < 2 || !(m.friction > 0.0) || m.radius_a > 0.0 || m.radius_b > 0.0) return;
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
@@ -77,8 +76,6 @@ void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a
   if (!invertible || !inverse.allFinite()) return;
   patch.inverse = inverse;
   patch.r_a = r_a, patch.r_b = r_b;
-  if (!was)
-    for (ConstraintRow& row : patch.rows) row.impulse = 0.0;
   patch.active = true;
 }
 
