@@ -88,13 +88,18 @@ const char* const tolerances[] = {
     "tolerance = {abs = 0/0, reason = ''}, ",
 };
 
-// Fields written as r[i].f = a: those of vec3, quat, body, world and articulation (fields are
-// not Entries, so they are listed here; API.md and the types' help list them).
+// Fields written as r[i].f = a: those of vec3, quat, body, world (its contact settings and
+// sleeping too), joint and articulation (fields are not Entries, so they are listed here;
+// API.md and the types' help list them).
 const char* const fields[] = {"x", "y", "z", "w", "position", "velocity", "angular_velocity",
                               "orientation", "mass", "inv_mass", "inertia", "restitution",
                               "friction", "static", "shape", "time", "gravity", "integrator",
                               "gyroscopic", "substeps", "iterations", "restitution_threshold",
-                              "q", "qd", "links", "base"};
+                              "q", "qd", "links", "base", "solver", "contact_hertz",
+                              "contact_damping_ratio", "contact_push_speed", "joint_hertz",
+                              "joint_damping_ratio", "relax_iterations", "speculative_distance",
+                              "slop", "sleeping", "sleep_linear", "sleep_angular", "sleep_time",
+                              "sleeping_count", "collide", "length", "hertz"};
 
 template <class T, std::size_t N>
 const char* pick(const T (&table)[N], unsigned byte) {
