@@ -793,6 +793,11 @@ void ContactConstraints::store(double h) {
               [](const ContactInfo& x, const ContactInfo& y) { return x.feature < y.feature; });
   }
   contacts_.swap(next_contacts_);
+  if (undo_open_) {  // the step's first store: keep the points it started from (begin_step)
+    undo_contacts_.swap(next_contacts_);
+    undo_open_ = false;
+    undo_kept_ = true;
+  }
   last_dt_ = h;
 }
 

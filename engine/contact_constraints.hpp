@@ -231,6 +231,19 @@ class ContactConstraints {
     contacts_ = from.contacts;
     last_dt_ = from.last_dt;
   }
+  // The world's undo of one step, without copying the points (World::save_step): begin_step
+  // marks the points the step starts from; the step's first store() sets them aside (a swap of
+  // buffers) instead of reusing their memory, and undo_step() puts them back as they were.
+  void begin_step() {
+    undo_open_ = true;
+    undo_kept_ = false;
+    undo_dt_ = last_dt_;
+  }
+  void undo_step() {
+    if (undo_kept_) contacts_.swap(undo_contacts_);
+    last_dt_ = undo_dt_;
+    undo_open_ = undo_kept_ = false;
+  }
 
  private:
   struct Point {
@@ -400,6 +413,9 @@ class ContactConstraints {
   // The last step's points, sorted (warm starting), and the one being built.
   std::vector<ContactInfo> contacts_;
   std::vector<ContactInfo> next_contacts_;
+  std::vector<ContactInfo> undo_contacts_;  // the points the step started from (begin_step)
+  double undo_dt_ = 0.0;
+  bool undo_open_ = false, undo_kept_ = false;
   std::vector<std::uint32_t> order_, merged_;  // store's order of the manifolds
   double last_dt_ = 0.0;
   std::size_t cold_points_ = 0;

@@ -112,6 +112,16 @@ class Solver {
     contacts_.restore(contacts);
     last_h_ = last_substep;
   }
+  // The undo of one step without copying (ContactConstraints::begin_step): what the step
+  // started from is kept as it is replaced.
+  void begin_step() {
+    contacts_.begin_step();
+    undo_h_ = last_h_;
+  }
+  void undo_step() {
+    contacts_.undo_step();
+    last_h_ = undo_h_;
+  }
   // The joints' row impulses, flattened in order (Constraint::impulses), and back.
   // Per joint: the row count, the state it tracks (a hinge's turns), the impulses.
   template <class Joints>
@@ -205,6 +215,7 @@ class Solver {
   std::vector<double> report_;
   double h_ = 0.0;
   double last_h_ = 0.0;
+  double undo_h_ = 0.0;  // last_h_ when the step began (begin_step)
 };
 
 }  // namespace rigidlab

@@ -315,15 +315,15 @@ void World::save_step(bool with_bodies) {
   snapshot_.resize(b.size());
   if (with_bodies)
     for (std::size_t i = 0; i < b.size(); ++i) snapshot_[i] = state_of(b[i]);
-  solver_.save(undo_.contacts, undo_.last_substep);
-  Solver::save_impulses(joints_, undo_.joint_impulses);
+  solver_.begin_step();  // the contacts are kept aside by the step itself, not copied
+  Solver::save_impulses(joints_, undo_impulses_);
 }
 
 void World::restore_step() {
   std::vector<Body>& b = bodies();
   for (std::size_t i = 0; i < b.size(); ++i) set_state(b[i], snapshot_[i]);
-  solver_.restore(undo_.contacts, undo_.last_substep);
-  Solver::restore_impulses(joints_, undo_.joint_impulses);
+  solver_.undo_step();
+  Solver::restore_impulses(joints_, undo_impulses_);
 }
 
 void World::step(double dt, long count, const std::function<void()>& poll) {

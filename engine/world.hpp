@@ -225,7 +225,7 @@ class World {
   std::pair<std::size_t, std::uint64_t> excluded_for_{0, 0};
   // The undo of the step being taken: the bodies' states before it, the solver's memory.
   std::vector<BodyState> snapshot_;
-  WorldState undo_;
+  std::vector<double> undo_impulses_;  // the joints' (the contacts: Solver::begin_step)
   StageWorkspace stages_;
   Rk4Workspace rk4_;
   std::function<void(double)> stage_forces_;  // evaluate_forces, bound once for rk4_step
