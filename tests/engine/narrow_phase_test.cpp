@@ -440,6 +440,101 @@ TEST(BoxBox, WitnessPointsLieOnTheSurfacesOfRandomRotatedBoxes) {
   EXPECT_GT(checked, 200);
 }
 
+// Which kind of contact two boxes get, against a separating-axis test written here by brute
+// force: each of the 15 axes (3 faces of a, 3 of b, the 9 edge cross products of at least
+// 1e-6 length), the boxes' 8 corners each projected on it, the gap between the two intervals.
+// The rule (engine/narrow_phase.cpp, collide_box_box): separated when an axis parts them by
+// more than the margin; otherwise a's face unless b's is better by the tolerance, and an edge
+// pair only when better than that face by the tolerance too. The edge axes that cannot win
+// are not computed by the engine (bounded through the products of the two rotations): an edge
+// it skipped wrongly would show here as a face contact where the edge pair wins. Ties within
+// 1e-9 of the rule's thresholds are left out (rounding decides them).
+TEST(BoxBox, ContactKindFollowsABruteForceSeparatingAxisTest) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.2, 1.0);
+  auto corners_gap = [](const Pose& a, const Vec3& ha, const Pose& b, const Vec3& hb,
+                        const Vec3& n) {
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (int box = 0; box < 2; ++box)
+      for (int c = 0; c < 8; ++c) {
+        const Pose& p = box == 0 ? a : b;
+        const Vec3& h = box == 0 ? ha : hb;
+        const Vec3 local((c & 1) ? h.x() : -h.x(), (c & 2) ? h.y() : -h.y(),
+                         (c & 4) ? h.z() : -h.z());
+        const double s = n.dot(p.position + p.rotation * local);
+        lo[box] = std::min(lo[box], s), hi[box] = std::max(hi[box], s);
+      }
+    return std::max(lo[1] - hi[0], lo[0] - hi[1]);
+  };
+  int kinds[3] = {0, 0, 0}, separated = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Vec3 ha(size(rng), size(rng), size(rng)), hb(size(rng), size(rng), size(rng));
+    // Every third pair nearly aligned (rotations of 1e-9 to 1e-2 rad), as boxes resting on
+    // each other are; the others at random.
+    const double tilt = trial % 3 == 0 ? std::pow(10.0, -2.0 - 7.0 * std::abs(u(rng))) : 3.0;
+    const Pose a = pose(Vec3(u(rng), u(rng), u(rng)),
+                        about(Vec3(u(rng), u(rng), u(rng) + 2), tilt * u(rng)));
+    const Vec3 direction = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Pose b = pose(a.position + (ha.norm() + hb.norm()) * (0.4 + 0.7 * std::abs(u(rng))) *
+                                         direction,
+                        about(Vec3(u(rng) + 2, u(rng), u(rng)), tilt * u(rng)));
+    const double margin = trial % 2 == 0 ? 0.0 : 0.05;
+    double best[3] = {-1e300, -1e300, -1e300};
+    Vec3 edge_axis = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) {
+      best[0] = std::max(best[0], corners_gap(a, ha, b, hb, a.rotation.col(i)));
+      best[1] = std::max(best[1], corners_gap(a, ha, b, hb, b.rotation.col(i)));
+      for (int j = 0; j < 3; ++j) {
+        const Vec3 axis = a.rotation.col(i).cross(b.rotation.col(j));
+        if (axis.norm() <= 1e-6) continue;
+        const double gap = corners_gap(a, ha, b, hb, axis.normalized());
+        if (gap > best[2]) best[2] = gap, edge_axis = axis.normalized();
+      }
+    }
+    const double tolerance = std::min(1e-3, 0.01 * std::min(ha.minCoeff(), hb.minCoeff()));
+    const double face = best[1] > best[0] + tolerance ? best[1] : best[0];
+    const double largest = std::max({best[0], best[1], best[2]});
+    auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
+    if (near(largest, margin) || near(best[1], best[0] + tolerance) ||
+        near(best[2], face + tolerance))
+      continue;
+    const Manifold m = collide_box_box(a, ha, b, hb, margin);
+    if (largest > margin) {
+      EXPECT_EQ(m.count, 0) << trial;
+      ++separated;
+      continue;
+    }
+    const int kind = best[2] > face + tolerance ? 2 : (face == best[1] ? 1 : 0);
+    // A face contact may keep no point: the incident face's corners clipped to the reference
+    // face can all lie beyond the margin while the boxes' nearest features, edges, do not
+    // (best[2] within the tolerance of the face). An edge pair always has its point.
+    if (m.count == 0) {
+      EXPECT_NE(kind, 2) << trial;
+      continue;
+    }
+    // An edge pair's one point has feature 2³¹ + 3 i + j; a face's points have hashed ids
+    // (which may look the same), so its normal, along no face normal, tells it apart.
+    auto along_face_of = [&m](const Pose& box) {
+      return std::abs((box.rotation.transpose() * m.normal).cwiseAbs().maxCoeff() - 1.0) < 1e-9;
+    };
+    const bool edge = m.count == 1 && m.points[0].feature - 0x80000000u < 9u &&
+                      !along_face_of(a) && !along_face_of(b);
+    ++kinds[kind];
+    EXPECT_EQ(edge, kind == 2) << trial;
+    if (kind == 2) {
+      EXPECT_EQ(m.count, 1) << trial;
+      EXPECT_NEAR(std::abs(m.normal.dot(edge_axis)), 1.0, 1e-9) << trial;
+    } else {  // the normal is a face normal of the box the rule picks
+      EXPECT_TRUE(along_face_of(kind == 0 ? a : b)) << trial;
+    }
+  }
+  // Every outcome was seen many times.
+  EXPECT_GT(kinds[0], 300);
+  EXPECT_GT(kinds[1], 200);
+  EXPECT_GT(kinds[2], 200);
+  EXPECT_GT(separated, 300);
+}
+
 TEST(BoxBox, FeaturesStayWhileTheSameFeaturesTouch) {
   const Pose a = pose(Vec3::Zero());
   // B's bottom face overhangs A's top face along x: two of its corners and two clipped points.
