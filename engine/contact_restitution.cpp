@@ -19,11 +19,13 @@ constexpr std::uint8_t touching_end = 2;   // touching after the positions moved
 constexpr std::uint8_t event = 4;          // impacts in the present round
 constexpr std::uint8_t fired = 8;          // impacted in an earlier round
 constexpr std::uint8_t took_part = ContactConstraints::took_part_flag;  // in some round
+constexpr std::uint8_t opened = 32;        // resting when the substep began, a gap now
 
 // A round solves its events with every point that touches at the end and touched already at
-// the start (resting contacts: they hold what the impact pushes against) or has impacted.
+// the start (resting contacts: they hold what the impact pushes against) or has impacted, and
+// the resting contacts that opened a little in the step (restitution, below).
 bool in_round(std::uint8_t flags) {
-  return (flags & event) ||
+  return (flags & (event | opened)) ||
          ((flags & touching_end) && (flags & (touched_start | fired)));
 }
 
@@ -42,25 +44,60 @@ constexpr long round_work = 16L * ContactSettings::max_iterations;
 
 }  // namespace
 
-// A body held by a resting contact (one that touched at the start of the step, carried load
-// that its free acceleration pressed into it, and did not come in fast) does not fall freely:
-// its acceleration over the step is taken as 0, and its velocity as what the sweeps left it
-// with (a box on the floor under a bouncing ball). Without a force pressing them together
-// (no gravity) touching bodies are free: a struck row of touching balls moves as one block.
+// A body held by a resting contact does not fall freely: its acceleration over the step is
+// taken as 0, and its velocity as the one it had at the start of the step (a box on the floor
+// under a bouncing ball). A resting contact touched at the start of the step, carried load and
+// did not come in fast; it holds a body when the body's free acceleration presses it into a
+// support: the ground, a static body, a body held already (a column of boxes on the floor, held
+// box by box from the floor up), or another free body pressing back (two bodies forced into
+// each other). Without a force pressing them together (no gravity) touching bodies are free: a
+// struck row of touching balls moves as one block. The search from the supports needs each
+// body's manifolds (link_bodies).
 void ContactConstraints::mark_supported(const Acceleration* acceleration) {
   acceleration_ = acceleration;
   supported_.assign(ground_ + 1, 0);
+  link_bodies();
   const double tolerance = touch_tolerance();
-  for (const Manifold& m : manifolds_)
+  auto fixed = [&](std::uint32_t slot) {
+    return slot == ground_ || solver_[slot].inverse_mass == 0.0;
+  };
+  // Whether the points of m that rest press b into a (n·(a_b − a_a) < 0, the accelerations of
+  // the bodies' points; a support's is 0): the slightest tolerance keeps two free bodies that
+  // fall side by side (equal accelerations, a difference of rounding) apart.
+  auto presses = [&](const Manifold& m, bool seeding) {
+    auto of = [&](std::uint32_t slot, const Vec3& r) -> Vec3 {
+      if (fixed(slot) || (!seeding && supported_[slot])) return Vec3::Zero();
+      return acceleration[slot].linear + acceleration[slot].angular.cross(r);
+    };
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       const Point& p = points_[k];
       if (!(p.separation <= tolerance && p.normal.impulse > 0.0 &&
             p.approach >= -settings_->restitution_threshold))
         continue;
-      const Vec3 pressed = acceleration[m.b].linear + acceleration[m.b].angular.cross(p.r_b) -
-                           acceleration[m.a].linear - acceleration[m.a].angular.cross(p.r_a);
-      if (m.normal.dot(pressed) < 0.0) supported_[m.a] = supported_[m.b] = 1;
+      const Vec3 acc_a = of(m.a, p.r_a), acc_b = of(m.b, p.r_b);
+      if (m.normal.dot(acc_b - acc_a) < -1e-9 * (acc_a.norm() + acc_b.norm())) return true;
     }
+    return false;
+  };
+  frontier_.clear();
+  auto hold = [&](std::uint32_t slot) {
+    if (fixed(slot) || supported_[slot]) return;
+    supported_[slot] = 1;
+    frontier_.push_back(slot);
+  };
+  for (const Manifold& m : manifolds_)
+    if (presses(m, true)) hold(m.a), hold(m.b);
+  while (!frontier_.empty()) {  // up from the supports, contact by contact
+    const std::uint32_t slot = frontier_.back();
+    frontier_.pop_back();
+    for (std::uint32_t j = body_first_[slot]; j < body_first_[slot + 1]; ++j) {
+      const Manifold& m = manifolds_[body_manifolds_[j]];
+      const std::uint32_t other = m.a == slot ? m.b : m.a;
+      if (!fixed(other) && !supported_[other] && presses(m, false)) hold(other);
+    }
+  }
+  for (std::uint32_t slot = 0; slot <= ground_; ++slot)
+    if (fixed(slot)) supported_[slot] = 1;
 }
 
 // a_n: the relative normal acceleration of the point's material points (m/s²), each body free
@@ -76,15 +113,17 @@ double ContactConstraints::normal_acceleration(const Manifold& m, const Point& p
 // w (m/s, ≤ 0): the normal velocity with which p met the surface in this step (along the normal
 // and at the arms it was found with), on the parabola
 // its positions follow: with w₀ its normal velocity at the start of the step (u − a Δt/2 per
-// body, u the velocity before the sweeps; a supported body's present velocity) and s its gap
-// then, the gap s + w₀ t + ½ a_n t² first closes at w = −√(w₀² − 2 a_n s) (however small s is:
+// body, u the velocity before the sweeps; a supported body's u − a Δt, the velocity it had
+// before the step's forces: not what the sweeps left, which a soft column still giving way
+// under the ball's speculative impulse made 0.85 m/s downward, and the ball's w that much
+// slower) and s its gap then, the gap s + w₀ t + ½ a_n t² first closes at w = −√(w₀² − 2 a_n s) (however small s is:
 // the last 0.1 mm of a 4 m/s fall at 1 kHz changes w by 2e-4 m/s). A point overlapping at the
 // start meets the surface at once, at w₀. 0 when it does not come in within the step.
 double ContactConstraints::impact_velocity(const Manifold& m, const Point& p) const {
   auto start = [&](std::uint32_t slot, const Vec3& r) -> Vec3 {
-    if (supported_[slot]) return point_velocity_of(solver_[slot], r);
-    const Vec3 v = start_velocity_[slot] - 0.5 * h_ * acceleration_[slot].linear;
-    const Vec3 w = start_angular_velocity_[slot] - 0.5 * h_ * acceleration_[slot].angular;
+    const double back = supported_[slot] ? 1.0 : 0.5;  // to the start of the step, or its middle
+    const Vec3 v = start_velocity_[slot] - back * h_ * acceleration_[slot].linear;
+    const Vec3 w = start_angular_velocity_[slot] - back * h_ * acceleration_[slot].angular;
     return v + w.cross(r);
   };
   const double w0 = m.start_normal.dot(start(m.b, p.start_r_b) - start(m.a, p.start_r_a));
@@ -190,7 +229,7 @@ bool ContactConstraints::start_round(bool first) {
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
       p.round_impulse = 0.0;
-      p.target = 0.0;
+      p.target = (p.flags & opened) ? -p.end_separation / h_ : 0.0;
       if (p.flags & event) p.flags = static_cast<std::uint8_t>((p.flags & ~event) | fired);
       if (!(p.flags & touching_end) || (p.flags & fired)) continue;
       const double a_n = normal_acceleration(m, p);
@@ -309,14 +348,24 @@ void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acc
     }
   if (!landings) return;
   mark_supported(acceleration);
+  // A resting contact of two held bodies that the sweeps opened by a little (the top box of a
+  // column rocked by the ball's speculative impulse: 10-60 µm at one edge) still holds in the
+  // event, as the step's speculative contacts do: it may close its gap s and no more,
+  // v_n ≥ −s/Δt. (Without it the top box of 5 pivoted on its other edge under the ball.)
+  // Only between held bodies: touching balls that a blow set apart keep apart.
+  for (const Manifold& m : manifolds_) {
+    if (!supported_[m.a] || !supported_[m.b]) continue;
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+      Point& p = points_[k];
+      if ((p.flags & touched_start) && !(p.flags & touching_end)) p.flags |= opened;
+    }
+  }
   // A push travels one contact of a chain per sweep pair (a ball bouncing on a box on the
   // floor: the box's rebound error halves per pair; a struck row of touching balls), and
   // impacts are rare: a round runs over its own manifolds until its increments settle to
   // 1e-12 of the largest, up to max_iterations sweeps.
-  bool linked = false;
   for (int round = 0; round < max_rounds && start_round(round == 0); ++round) {
     if (round > 0 && !bounces_) {
-      if (!linked) link_bodies(), linked = true;
       gather_round(settings_->iterations);
     } else {
       round_manifolds_.clear();
