@@ -22,6 +22,14 @@ double advance_to_contact(Distance distance, double speed, double dt, double tol
   return t;
 }
 
+// The pose after time t as the shape's distances see it: a sphere's (or no shape's) distance
+// depends on its centre alone, so its rotation is left as it was (no sine and cosine per
+// iteration); a box turns as advance() turns it.
+Pose advance_shape(const Shape& shape, const Pose& pose, const Motion& motion, double t) {
+  if (shape.kind == ShapeKind::box) return advance(pose, motion, t);
+  return {pose.position + t * motion.velocity, pose.rotation};
+}
+
 }  // namespace
 
 Pose advance(const Pose& pose, const Motion& motion, double t) {
@@ -40,7 +48,8 @@ double time_of_impact(const Shape& a, const Pose& pose_a, const Motion& motion_a
                        motion_a.angular_velocity.norm() * bounding_radius(a) +
                        motion_b.angular_velocity.norm() * bounding_radius(b);
   auto distance = [&](double t) {
-    return separation(a, advance(pose_a, motion_a, t), b, advance(pose_b, motion_b, t));
+    return separation(a, advance_shape(a, pose_a, motion_a, t), b,
+                      advance_shape(b, pose_b, motion_b, t));
   };
   return advance_to_contact(distance, speed, dt, tolerance);
 }
@@ -50,7 +59,9 @@ double time_of_impact(const Shape& shape, const Pose& pose, const Motion& motion
   // Only the motion along the normal brings a shape closer to a plane.
   const double speed = std::max(0.0, -plane.normal.dot(motion.velocity)) +
                        motion.angular_velocity.norm() * bounding_radius(shape);
-  auto distance = [&](double t) { return separation(shape, advance(pose, motion, t), plane); };
+  auto distance = [&](double t) {
+    return separation(shape, advance_shape(shape, pose, motion, t), plane);
+  };
   return advance_to_contact(distance, speed, dt, tolerance);
 }
 

@@ -61,6 +61,23 @@ TEST(TimeOfImpact, SpheresHeadOnAndPassingBy) {
               0.35, 1e-5);
 }
 
+// A sphere's spin moves none of its surface closer: spinning spheres meet the plane and each
+// other when the non-spinning ones do (gap / closing speed), only by smaller advances (the
+// bound s counts |ω| R; spins that make s a few times the closing speed still settle within
+// the 64 advances).
+TEST(TimeOfImpact, SpinningSpheresMeetWhenTheirCentresSaySo) {
+  const Plane floor = make_plane(Vec3(0, 1, 0), 0.0);
+  const double tol = 1e-6;
+  const Motion falling{Vec3(3, -4, 0), Vec3(0, 0, 4)};
+  const double t = time_of_impact(sphere(0.5), at(Vec3(0, 1.5, 0)), falling, floor, 1.0, tol);
+  EXPECT_GE(t, 0.25 - tol / 4);
+  EXPECT_LE(t, 0.25);
+  const Motion a{Vec3(2, 0, 0), Vec3(2, -2, 1)}, b{Vec3(-4, 0, 0), Vec3(0, 3, 0)};
+  EXPECT_NEAR(time_of_impact(sphere(0.5), at(Vec3::Zero()), a, sphere(1.0), at(Vec3(3, 1.2, 0)),
+                             b, 1.0, tol),
+              0.35, 1e-5);
+}
+
 TEST(TimeOfImpact, TurningBoxReachesThePlaneWithItsCorner) {
   // A box of half size (1, 0.1, 0.1) with its centre 0.6 m above a floor, turning about z at
   // 1 rad/s: its lowest corner, at distance √(1 + 0.01) from the centre, reaches the floor when
