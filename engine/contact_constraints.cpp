@@ -117,22 +117,24 @@ void ContactConstraints::warm_start(SolverBody* solver) {
     const std::size_t index = static_cast<std::size_t>(&m - manifolds_.data());
     prepare_patch(index, a, b);  // contact_friction.cpp
     const bool patch = patches_[index].active;
+    if (!patch && may_be_patch(m)) prepare_friction(m, a, b);  // add_manifold left them
     const auto [first, last] = previous_points(m, hint);
     hint = last;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-      Point& p = points_[k];
-      const ContactInfo* found = previous_point(p, first, last);
+      const ContactInfo* found = previous_point(points_[k], first, last);
       if (found == nullptr) {
         ++cold_points_;
         continue;
       }
-      p.normal.impulse = scale * found->sweep_impulse;
-      p.tangent1.impulse = scale * found->friction_impulse.dot(p.tangent1.jacobian.linear);
-      p.tangent2.impulse = scale * found->friction_impulse.dot(p.tangent2.jacobian.linear);
-      apply_row(p.normal, a, b, p.normal.impulse);
+      NormalRow& normal = normals_[k];
+      FrictionRows& f = frictions_[k];
+      normal.impulse = scale * found->sweep_impulse;
+      f.tangent1.impulse = scale * found->friction_impulse.dot(f.tangent1.jacobian.linear);
+      f.tangent2.impulse = scale * found->friction_impulse.dot(f.tangent2.jacobian.linear);
+      apply_normal(m.normal, k, a, b, normal.impulse);
       if (patch) continue;
-      apply_row(p.tangent1, a, b, p.tangent1.impulse);
-      apply_row(p.tangent2, a, b, p.tangent2.impulse);
+      apply_row(f.tangent1, a, b, f.tangent1.impulse);
+      apply_row(f.tangent2, a, b, f.tangent2.impulse);
     }
     if (patch) warm_start_patch(index);
   }
@@ -166,9 +168,8 @@ void ContactConstraints::take_back_speculative() {
     changed = false;
     for (const Manifold& m : manifolds_)
       for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-        const Point& p = points_[k];
-        if (!(p.normal.impulse > 0.0)) continue;
-        if (candidate(m, p) && !held_[m.a] && !held_[m.b]) continue;
+        if (!(normals_[k].impulse > 0.0)) continue;
+        if (candidate(m, points_[k]) && !held_[m.a] && !held_[m.b]) continue;
         changed = hold(m.a) || changed;
         changed = hold(m.b) || changed;
       }
@@ -176,10 +177,10 @@ void ContactConstraints::take_back_speculative() {
   for (const Manifold& m : manifolds_) {
     if (held_[m.a] || held_[m.b]) continue;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-      Point& p = points_[k];
-      if (!(p.normal.impulse > 0.0) || !candidate(m, p)) continue;
-      apply_row(p.normal, solver_[m.a], solver_[m.b], -p.normal.impulse);
-      p.normal.impulse = 0.0;
+      NormalRow& normal = normals_[k];
+      if (!(normal.impulse > 0.0) || !candidate(m, points_[k])) continue;
+      apply_normal(m.normal, k, solver_[m.a], solver_[m.b], -normal.impulse);
+      normal.impulse = 0.0;
     }
   }
 }
@@ -194,7 +195,7 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
       p.end_separation = current_separation(m, p);
-      p.relax_cap = p.end_separation <= tolerance ? unbounded : p.normal.impulse;
+      normals_[k].relax_cap = p.end_separation <= tolerance ? unbounded : normals_[k].impulse;
     }
     const SolverBody& a = solver[m.a];
     const SolverBody& b = solver[m.b];
@@ -209,14 +210,24 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
       Point& p = points_[k];
       p.r_a += (1.0 - w) * apart;
       p.r_b -= w * apart;
-      for (ConstraintRow* row : {&p.normal, &p.tangent1, &p.tangent2}) {
-        row->jacobian = point_jacobian(row->jacobian.linear, p.r_a, p.r_b);
-        prepare_row(*row, a, b);
-      }
+      prepare_normal(k, m.normal, p.r_a, p.r_b, a, b);
     }
-    if (patches_[mi].active) {  // its impulses stay on the points if it cannot be prepared
-      spread_patch(mi);
+    Patch& patch = patches_[mi];
+    if (patch.active) {
+      // The patch keeps its impulses at the new arms. Only if it cannot be prepared there do
+      // its points take them (spread at the patch's old centre and spread, as before the
+      // move) and solve their own rows; else store() spreads them at the end of the step.
+      const Vec3 centre = patch.r_b;
+      const double spread = patch.spread;
       prepare_patch(mi, a, b);
+      if (!patch.active) {
+        patch.r_b = centre, patch.spread = spread, patch.active = true;
+        spread_patch(mi);
+        patch.active = false;
+        prepare_friction(m, a, b);
+      }
+    } else {
+      prepare_friction(m, a, b);
     }
     prepare_block(mi, false);
   }
@@ -230,25 +241,26 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
 // projected on the new tangents.
 void ContactConstraints::turn_to_centres(Manifold& m, const Vec3& apart) {
   Point& p = points_[m.first];
+  FrictionRows& f = frictions_[m.first];
   const Vec3 centres = p.r_a - p.r_b + apart;  // x_b − x_a at the end (r_a − r_b at the start)
   const double length = centres.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return;
-  const Vec3 friction = p.tangent1.impulse * p.tangent1.jacobian.linear +
-                        p.tangent2.impulse * p.tangent2.jacobian.linear;
+  const Vec3 friction = f.tangent1.impulse * f.tangent1.jacobian.linear +
+                        f.tangent2.impulse * f.tangent2.jacobian.linear;
   m.normal = m.start_normal = centres / length;
   const double from_a = m.radius_a + 0.5 * (length - m.radius_a - m.radius_b);
   p.r_a = p.start_r_a = from_a * m.normal;
   p.r_b = p.start_r_b = (from_a - length) * m.normal;
-  Vec3 t1 = p.tangent1.jacobian.linear - p.tangent1.jacobian.linear.dot(m.normal) * m.normal;
+  Vec3 t1 = f.tangent1.jacobian.linear - f.tangent1.jacobian.linear.dot(m.normal) * m.normal;
   if (!(t1.norm() > 1e-9)) tangent_basis(m.normal, t1, t1);
   t1.normalize();
   const Vec3 t2 = m.normal.cross(t1);
-  p.normal.jacobian = point_jacobian(m.normal, p.r_a, p.r_b);
-  p.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
-  p.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
-  p.tangent1.impulse = friction.dot(t1);
-  p.tangent2.impulse = friction.dot(t2);
-  for (ConstraintRow* row : {&p.normal, &p.tangent1, &p.tangent2})
+  f.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
+  f.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
+  f.tangent1.impulse = friction.dot(t1);
+  f.tangent2.impulse = friction.dot(t2);
+  prepare_normal(m.first, m.normal, p.r_a, p.r_b, solver_[m.a], solver_[m.b]);
+  for (ConstraintRow* row : {&f.tangent1, &f.tangent2})
     prepare_row(*row, solver_[m.a], solver_[m.b]);
   p.turned = true;
 }
@@ -265,19 +277,37 @@ double ContactConstraints::current_separation(const Manifold& m, const Point& p)
   return p.separation + m.normal.dot(moved);
 }
 
-double& ContactConstraints::impulse_of(Point& p, Impulse which) {
-  switch (which) {
-    case Impulse::sweep: return p.normal.impulse;
-    case Impulse::round: return p.round_impulse;
-    case Impulse::push: break;
-  }
-  return p.push_impulse;
+// See the header (NormalRow).
+ConstraintRow ContactConstraints::normal_row(const Vec3& normal, std::uint32_t k) const {
+  const NormalRow& n = normals_[k];
+  ConstraintRow row;
+  row.jacobian = {normal, n.angular_a, n.angular_b};
+  row.weighted_a = n.weighted_a;
+  row.weighted_b = n.weighted_b;
+  row.mass = n.mass;
+  row.impulse = n.impulse;
+  row.lower = 0.0;
+  return row;
+}
+
+void ContactConstraints::prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a,
+                                        const Vec3& r_b, const SolverBody& a,
+                                        const SolverBody& b) {
+  NormalRow& row = normals_[k];
+  row.angular_a = r_a.cross(normal);
+  row.angular_b = r_b.cross(normal);
+  row.weighted_a = a.inverse_inertia * row.angular_a;
+  row.weighted_b = b.inverse_inertia * row.angular_b;
+  const double mass = (a.inverse_mass + b.inverse_mass) * normal.dot(normal) +
+                      row.angular_a.dot(row.weighted_a) + row.angular_b.dot(row.weighted_b);
+  row.mass = mass > 0.0 && std::isfinite(mass) ? 1.0 / mass : 0.0;
 }
 
 // The velocity bias of p's normal row (solve_row drives J v toward −bias) and its softness,
 // per mode (see NormalMode). False when the row is left alone.
-bool ContactConstraints::normal_bias(const Manifold& m, const Point& p, NormalMode mode,
+bool ContactConstraints::normal_bias(const Manifold& m, std::uint32_t k, NormalMode mode,
                                      double& bias, Softness& soft) const {
+  const Point& p = points_[k];
   soft = rigid_softness;
   bias = 0.0;
   switch (mode) {
@@ -297,7 +327,7 @@ bool ContactConstraints::normal_bias(const Manifold& m, const Point& p, NormalMo
       if (p.separation > touch_tolerance()) return false;
       if (p.end_separation <= landed_tolerance()) return true;
       bias = p.end_separation / h_;
-      return p.relax_cap > 0.0;
+      return normals_[k].relax_cap > 0.0;
   }
   return false;
 }
@@ -321,8 +351,9 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   const double ma = a.inverse_mass, mb = b.inverse_mass;
   bool changed = false;
   for (std::uint32_t i = 0; i < m.count; ++i) {
-    Point& p = points_[m.first + (forward ? i : m.count - 1 - i)];
-    const double limit = m.friction * p.normal.impulse;
+    const std::uint32_t k = m.first + (forward ? i : m.count - 1 - i);
+    FrictionRows& p = frictions_[k];
+    const double limit = m.friction * normals_[k].impulse;
     // No normal load and no friction impulse: the disk is a point and nothing changes (side
     // by side boxes of a pyramid, spheres grazing in a heap).
     if (limit == 0.0 && p.tangent1.impulse == 0.0 && p.tangent2.impulse == 0.0) continue;
@@ -370,12 +401,11 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, 
                                      Vec4* result) {
   Manifold& m = manifolds_[manifold];
   const int count = static_cast<int>(m.count);
-  Point* points = points_.data() + m.first;
   // Plain arrays, not packets: the impulses arrive one by one, and a packet load of values
   // just stored one by one waits for the stores.
   double old[max_manifold_points] = {0.0, 0.0, 0.0, 0.0}, r[max_manifold_points] = {0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < count; ++i) {
-    old[i] = impulse_of(points[i], which);
+    old[i] = impulse_of(m.first + i, which);
     r[i] = residual[i] + gamma * old[i];
   }
   const double* c = blocks_[manifold].null.data();
@@ -394,12 +424,12 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, 
   double total = 0.0;
   Vec3 angular_a = Vec3::Zero(), angular_b = Vec3::Zero();
   for (int i = 0; i < count; ++i) {
-    Point& p = points[i];
+    const NormalRow& row = normals_[m.first + i];
     const double change = next[i] - old[i];
     total += change;
-    angular_a += change * p.normal.weighted_a;
-    angular_b += change * p.normal.weighted_b;
-    impulse_of(p, which) = next[i];
+    angular_a += change * row.weighted_a;
+    angular_b += change * row.weighted_b;
+    impulse_of(m.first + i, which) = next[i];
   }
   a.velocity -= (a.inverse_mass * total) * m.normal;
   a.angular_velocity -= angular_a;
@@ -478,7 +508,7 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
   bool held[max_manifold_points] = {false, false, false, false};
   for (int i = 0; i < count; ++i) {
     if (!active[i]) continue;
-    old[i] = impulse_of(points_[m.first + i], which);
+    old[i] = impulse_of(m.first + i, which);
     residual[i] = residual_in[i];
   }
   auto upper = [&](int i) { return cap != nullptr ? cap[i] : unbounded; };
@@ -538,9 +568,9 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
     if (settled) {
       for (int i = 0; i < count; ++i) {
         if (!active[i]) continue;
-        Point& p = points_[m.first + i];
-        apply_row(p.normal, a, b, next[i] - impulse_of(p, which));
-        impulse_of(p, which) = next[i];
+        const std::uint32_t k = m.first + i;
+        apply_normal(m.normal, k, a, b, next[i] - impulse_of(k, which));
+        impulse_of(k, which) = next[i];
       }
       return true;
     }
@@ -569,7 +599,7 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   // J v = n·(v_b − v_a) + (r_b × n)·ω_b − (r_a × n)·ω_a: the points share the first term.
   const double linear = m.normal.dot(b.velocity - a.velocity);
   for (std::uint32_t i = 0; i < m.count; ++i) {
-    Point& p = points_[m.first + i];
+    const NormalRow& p = normals_[m.first + i];
     active[i] = rows[i].active;
     cap[i] = mode == NormalMode::relax ? p.relax_cap : unbounded;
     gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
@@ -578,9 +608,9 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
       residual[i] = 0.0;
       continue;
     }
-    const double velocity = linear + p.normal.jacobian.angular_b.dot(b.angular_velocity) -
-                            p.normal.jacobian.angular_a.dot(a.angular_velocity);
-    const double impulse = impulse_of(p, which);
+    const double velocity = linear + p.angular_b.dot(b.angular_velocity) -
+                            p.angular_a.dot(a.angular_velocity);
+    const double impulse = which == Impulse::push ? p.push_impulse : p.impulse;
     // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
     // for all the points of a manifold: they share their softness): offset = bias/mass_scale.
     residual[i] = velocity + rows[i].offset;
@@ -607,13 +637,13 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
   }
   for (std::uint32_t i = 0; i < m.count; ++i) {
     if (!active[i]) continue;
-    Point& p = points_[m.first + i];
-    normal_bias(m, p, mode, bias[i], soft[i]);
-    ConstraintRow row = p.normal;  // the row with this mode's impulse and bounds
-    row.impulse = impulse_of(p, which);
+    const std::uint32_t k = m.first + i;
+    normal_bias(m, k, mode, bias[i], soft[i]);
+    ConstraintRow row = normal_row(m.normal, k);  // with this mode's impulse and bounds
+    row.impulse = impulse_of(k, which);
     row.upper = cap[i];
     solve_row(row, a, b, bias[i], soft[i]);
-    impulse_of(p, which) = row.impulse;
+    impulse_of(k, which) = row.impulse;
   }
   return largest;
 }
@@ -625,7 +655,7 @@ void ContactConstraints::prepare_mode(NormalMode mode) {
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       double bias;
       Softness soft;
-      rows[k].active = normal_bias(m, points_[k], mode, bias, soft);
+      rows[k].active = normal_bias(m, k, mode, bias, soft);
       rows[k].offset = rows[k].active ? bias / soft.mass_scale : 0.0;
     }
   mode_rows(mode).ready = true;
@@ -689,12 +719,15 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Eigen::Matrix4d k = Eigen::Matrix4d::Identity();  // unused rows and columns: decoupled
   double trace = 0.0;
   // From the prepared normal rows' W Jᵀ (coupling_weighted), each pair once (K is symmetric).
+  // J_i W J_jᵀ of two normal rows: their linear parts are both the manifold's normal.
+  const double linear = (a.inverse_mass + b.inverse_mass) * m.normal.dot(m.normal);
   for (int j = 0; j < count; ++j) {
-    const ConstraintRow& row = points_[m.first + j].normal;
-    for (int i = 0; i <= j; ++i)
-      k(i, j) = k(j, i) =
-          coupling_weighted(points_[m.first + i].normal.jacobian, row.jacobian, a.inverse_mass,
-                            row.weighted_a, b.inverse_mass, row.weighted_b);
+    const NormalRow& row = normals_[m.first + j];
+    for (int i = 0; i <= j; ++i) {
+      const NormalRow& other = normals_[m.first + i];
+      k(i, j) = k(j, i) = linear + other.angular_a.dot(row.weighted_a) +
+                          other.angular_b.dot(row.weighted_b);
+    }
     trace += k(j, j);
   }
   if (!(trace > 0.0) || !std::isfinite(trace)) return;
@@ -781,10 +814,12 @@ void ContactConstraints::store(double h) {
       info.depth = -p.separation;
       // The next step is warm started with the load a point carried, not with an impact
       // (touching balls that a blow set apart at one speed would be pushed apart again).
-      info.sweep_impulse = (p.flags & took_part_flag) ? 0.0 : p.normal.impulse;
-      info.normal_impulse = p.normal.impulse + p.restitution_impulse;
-      info.friction_impulse = p.tangent1.impulse * p.tangent1.jacobian.linear +
-                              p.tangent2.impulse * p.tangent2.jacobian.linear;
+      const double normal_impulse = normals_[k].impulse;
+      const FrictionRows& f = frictions_[k];
+      info.sweep_impulse = (p.flags & took_part_flag) ? 0.0 : normal_impulse;
+      info.normal_impulse = normal_impulse + p.restitution_impulse;
+      info.friction_impulse = f.tangent1.impulse * f.tangent1.jacobian.linear +
+                              f.tangent2.impulse * f.tangent2.jacobian.linear;
       info.restitution = m.restitution;
       info.friction = m.friction;
       next_contacts_.push_back(info);
@@ -806,6 +841,8 @@ void ContactConstraints::body_removed(BodyId id) {
   contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), involves), contacts_.end());
   manifolds_.clear();
   points_.clear();
+  normals_.clear();
+  frictions_.clear();
   velocity_rows_.ready = push_rows_.ready = relax_rows_.ready = false;
 }
 

@@ -111,6 +111,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -246,8 +249,29 @@ class ContactConstraints {
   }
 
  private:
+  // A point is kept in three arrays by what reads it (the sweeps visit each point some 24
+  // times a step; a 700-byte point streamed most of itself from L2/L3 each time, and settle/4096
+  // missed L2 35 times as often per contact as settle/256):
+  // - NormalRow (normals_): what the normal sweeps and the block solves read, two cache lines.
+  //   Its row's linear part is the manifold's normal, shared by its points:
+  //   J = [−n, −angular_a, n, angular_b] (engine/constraint_row.hpp).
+  // - FrictionRows (frictions_): the point's two friction rows (read by the sweeps only for a
+  //   manifold without a patch: engine/contact_friction.cpp).
+  // - Point (points_): the rest, read once or twice a step (arms, witnesses, gaps, restitution).
+  // The arrays are not zeroed when a point is made (DefaultInit): add_manifold sets every field
+  // of NormalRow and Point (a field added here must be set there too).
+  struct alignas(64) NormalRow {
+    Vec3 angular_a, angular_b;    // r_a × n, r_b × n
+    Vec3 weighted_a, weighted_b;  // I_a⁻¹ angular_a, I_b⁻¹ angular_b
+    double mass;                  // 1/(J W Jᵀ); 0 when neither body can move along n
+    double impulse;               // N s: the sweeps' accumulated λ (≥ 0)
+    double push_impulse;          // N s: soft_step's position feedback (on the push velocities)
+    double relax_cap;             // N s: relax may only take back impulse from a point with a gap
+  };
+  struct FrictionRows {
+    ConstraintRow tangent1, tangent2;
+  };
   struct Point {
-    ConstraintRow normal, tangent1, tangent2;
     Vec3 r_a, r_b;            // m, from each COM to the point (at the poses of the start;
                               // moved to the end poses by positions_moved)
     Vec3 start_r_a, start_r_b;  // m, the arms at the start (the impact velocity's)
@@ -255,17 +279,36 @@ class ContactConstraints {
     Vec3 point;               // m, world, when found
     double separation;        // m: the gap at the start of the substep (< 0 overlap)
     double end_separation;    // m: the gap after the positions moved
-    double relax_cap;         // N s: relax may only take back impulse from a point with a gap
     double approach;          // m/s: J v before the solve
     double slop;              // m: the overlap sequential_impulses' position sweeps leave
     double restitution_impulse;  // N s: added by the restitution rounds
-    double push_impulse;      // N s: soft_step's position feedback (on the push velocities)
     double round_impulse;     // N s: this restitution round's increment
     double target;            // m/s: J v the restitution round drives toward
     std::uint32_t feature;
     std::uint8_t flags;       // of the restitution stage (contact_restitution.cpp)
     bool turned;              // a sphere pair taken at the end poses (positions_moved)
   };
+  // The normal row of point k (of manifold m) as the sweeps use it: its velocity J v, the
+  // impulse λ applied along it (Δv = W Jᵀ λ), the whole row (for solve_row). The same
+  // arithmetic as row_velocity/apply_row of engine/constraint_row.hpp with linear = m.normal.
+  double normal_velocity(const Vec3& normal, std::uint32_t k, const SolverBody& a,
+                         const SolverBody& b) const {
+    const NormalRow& row = normals_[k];
+    return normal.dot(b.velocity - a.velocity) + row.angular_b.dot(b.angular_velocity) -
+           row.angular_a.dot(a.angular_velocity);
+  }
+  void apply_normal(const Vec3& normal, std::uint32_t k, SolverBody& a, SolverBody& b,
+                    double lambda) const {
+    const NormalRow& row = normals_[k];
+    a.velocity -= (a.inverse_mass * lambda) * normal;
+    a.angular_velocity -= lambda * row.weighted_a;
+    b.velocity += (b.inverse_mass * lambda) * normal;
+    b.angular_velocity += lambda * row.weighted_b;
+  }
+  ConstraintRow normal_row(const Vec3& normal, std::uint32_t k) const;
+  // Sets point k's normal row for arms r_a, r_b (prepare_row of engine/constraint_row.hpp).
+  void prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a, const Vec3& r_b,
+                      const SolverBody& a, const SolverBody& b);
   struct Manifold {
     std::uint32_t a, b;          // solver slots
     std::uint32_t first, count;  // points
@@ -323,7 +366,7 @@ class ContactConstraints {
   double current_separation(const Manifold& m, const Point& p) const;
   void turn_to_centres(Manifold& m, const Vec3& apart);
   void take_back_speculative();
-  bool normal_bias(const Manifold& m, const Point& p, NormalMode mode, double& bias,
+  bool normal_bias(const Manifold& m, std::uint32_t k, NormalMode mode, double& bias,
                    Softness& soft) const;
   // normal_bias of every point for `mode`, as the block form takes it (below), made once per
   // stage instead of once per sweep: the biases depend on the gaps, fixed within a stage.
@@ -332,7 +375,14 @@ class ContactConstraints {
   double solve_normals(std::size_t manifold, NormalMode mode);
   // Which impulse of a point a block solve accumulates.
   enum class Impulse { sweep, round, push };
-  static double& impulse_of(Point& p, Impulse which);
+  double& impulse_of(std::uint32_t k, Impulse which) {
+    switch (which) {
+      case Impulse::sweep: return normals_[k].impulse;
+      case Impulse::round: return points_[k].round_impulse;
+      case Impulse::push: break;
+    }
+    return normals_[k].push_impulse;
+  }
   bool solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
                    const double* residual, const double* cap, Impulse which, Vec4* result);
   bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
@@ -358,6 +408,13 @@ class ContactConstraints {
     bool active;            // else each point has its own friction rows
   };
   void prepare_patch(std::size_t manifold, const SolverBody& a, const SolverBody& b);
+  // Whether prepare_patch can make m a patch (its points' friction rows are then prepared only
+  // when it does not: prepare_friction).
+  static bool may_be_patch(const Manifold& m) {
+    return !(m.count < 2 || !(m.friction > 0.0) || m.radius_a > 0.0 || m.radius_b > 0.0);
+  }
+  // The friction rows of m's points at their present arms.
+  void prepare_friction(const Manifold& m, const SolverBody& a, const SolverBody& b);
   void warm_start_patch(std::size_t manifold);
   void solve_patch(std::size_t manifold);
   void spread_patch(std::size_t manifold);
@@ -380,7 +437,29 @@ class ContactConstraints {
   const Acceleration* acceleration_ = nullptr;
   ContactPairs pairs_;  // the broad phase, kept from step to step
   std::vector<Manifold> manifolds_;
-  std::vector<Point> points_;
+  // An allocator that default-initialises (std::allocator value-initialises: emplace_back()
+  // zeroed a point's bytes before add_manifold wrote them all again).
+  template <class T>
+  struct DefaultInit : std::allocator<T> {
+    template <class U>
+    struct rebind {
+      using other = DefaultInit<U>;
+    };
+    DefaultInit() = default;
+    template <class U>
+    DefaultInit(const DefaultInit<U>&) noexcept {}
+    template <class U>
+    void construct(U* at) noexcept(std::is_nothrow_default_constructible<U>::value) {
+      ::new (static_cast<void*>(at)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* at, Args&&... args) {
+      ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
+    }
+  };
+  std::vector<Point, DefaultInit<Point>> points_;
+  std::vector<NormalRow, DefaultInit<NormalRow>> normals_;       // by point (see Point)
+  std::vector<FrictionRows, DefaultInit<FrictionRows>> frictions_;  // by point
   std::vector<Block> blocks_;  // by manifold
   // Per NormalMode, per point (prepare_mode): whether its normal row takes part, and its
   // residual offset bias/mass_scale (r = J v + offset, engine/contact_constraints.cpp

@@ -48,6 +48,8 @@ void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector
   ids_ = &ids;
   manifolds_.clear();
   points_.clear();
+  normals_.clear();
+  frictions_.clear();
   velocity_rows_.ready = push_rows_.ready = relax_rows_.ready = false;
   pairs_.update(bodies, ids, solver, h, settings.speculative_distance);
   // The planes first, body by body, then the pairs in the order of their ids
@@ -193,11 +195,21 @@ void ContactConstraints::add_manifold(const std::vector<Body>& bodies, const rig
   // displacements going to the heavier one.
   const double weight_a = sa.inverse_mass / (sa.inverse_mass + sb.inverse_mass);
   const Vec3 shift = toi * (weight_a * sa.velocity + (1.0 - weight_a) * sb.velocity);
+  // A manifold that may hold its friction as a patch (prepare_patch) leaves its points'
+  // friction rows unprepared until they are needed (prepare_friction).
+  const bool patch = may_be_patch(c);
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& found = m.points[k];
-    // Made in place (a Point is some 700 bytes: a copy into the vector cost as much as the
-    // zeroing).
+    // Made in place and not zeroed first (see Point): every field is set below.
+    const auto index = static_cast<std::uint32_t>(points_.size());
     Point& p = points_.emplace_back();
+    FrictionRows& f = frictions_.emplace_back();
+    NormalRow& normal = normals_.emplace_back();
+    normal.impulse = normal.push_impulse = normal.relax_cap = 0.0;
+    p.end_separation = p.restitution_impulse = p.round_impulse = p.target = 0.0;
+    p.separation = 0.0;  // central_sphere_point keeps it for concentric spheres
+    p.flags = 0;
+    p.turned = false;
     p.feature = found.feature;
     p.point = found.point;
     // Witness points (engine/narrow_phase.hpp): on a at point − n g/2, on b at point + n g/2,
@@ -227,13 +239,13 @@ void ContactConstraints::add_manifold(const std::vector<Body>& bodies, const rig
     p.approach = c.normal.dot(relative);
     Vec3 t1, t2;
     friction_directions(c.normal, relative - p.approach * c.normal, t1, t2);
-    p.normal.jacobian = point_jacobian(c.normal, p.r_a, p.r_b);
-    p.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
-    p.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
-    prepare_row(p.normal, sa, sb);
-    prepare_row(p.tangent1, sa, sb);
-    prepare_row(p.tangent2, sa, sb);
-    p.normal.lower = 0.0;
+    f.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
+    f.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
+    prepare_normal(index, c.normal, p.r_a, p.r_b, sa, sb);
+    if (!patch) {
+      prepare_row(f.tangent1, sa, sb);
+      prepare_row(f.tangent2, sa, sb);
+    }
     // The overlap position correction leaves alone: linear_slop, but at most 1 % of the
     // smaller body (a 0.1 m cube would otherwise rest 5 mm, 5 % of its height, deep).
     p.slop = std::min(settings_->linear_slop, slop_fraction * std::min(size_a, size_b));

@@ -46,7 +46,7 @@ void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a
   const Manifold& m = manifolds_[manifold];
   Patch& patch = patches_[manifold];
   patch.active = false;
-  if (m.count < 2 || !(m.friction > 0.0) || m.radius_a > 0.0 || m.radius_b > 0.0) return;
+  if (!may_be_patch(m)) return;
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
   for (std::uint32_t k = m.first; k < m.first + m.count; ++k)
     r_a += points_[k].r_a, r_b += points_[k].r_b;
@@ -79,6 +79,17 @@ void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a
   patch.active = true;
 }
 
+void ContactConstraints::prepare_friction(const Manifold& m, const SolverBody& a,
+                                          const SolverBody& b) {
+  for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+    const Point& p = points_[k];
+    for (ConstraintRow* row : {&frictions_[k].tangent1, &frictions_[k].tangent2}) {
+      row->jacobian = point_jacobian(row->jacobian.linear, p.r_a, p.r_b);
+      prepare_row(*row, a, b);
+    }
+  }
+}
+
 // The warm start: the points' impulses (warm_start set them from the points they continue)
 // gathered into the patch's force and torque about its centre, then applied.
 void ContactConstraints::warm_start_patch(std::size_t manifold) {
@@ -87,11 +98,11 @@ void ContactConstraints::warm_start_patch(std::size_t manifold) {
   Vec3 force = Vec3::Zero();
   double torque = 0.0;
   for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-    Point& p = points_[k];
+    FrictionRows& p = frictions_[k];
     const Vec3 f = p.tangent1.impulse * p.tangent1.jacobian.linear +
                    p.tangent2.impulse * p.tangent2.jacobian.linear;
     force += f;
-    torque += m.normal.dot(in_plane(p.r_b - patch.r_b, m.normal).cross(f));
+    torque += m.normal.dot(in_plane(points_[k].r_b - patch.r_b, m.normal).cross(f));
     p.tangent1.impulse = p.tangent2.impulse = 0.0;
   }
   SolverBody& a = solver_[m.a];
@@ -111,7 +122,7 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
   Patch& patch = patches_[manifold];
   double load = 0.0, lever = 0.0;
   for (std::uint32_t i = 0; i < m.count; ++i) {
-    const double normal = points_[m.first + i].normal.impulse;
+    const double normal = normals_[m.first + i].impulse;
     load += normal;
     lever += normal * patch.distance[i];
   }
@@ -146,20 +157,21 @@ void ContactConstraints::spread_patch(std::size_t manifold) {
   const Vec3 force = patch.rows[0].impulse * patch.rows[0].jacobian.linear +
                      patch.rows[1].impulse * patch.rows[1].jacobian.linear;
   double load = 0.0;
-  for (std::uint32_t k = m.first; k < m.first + m.count; ++k) load += points_[k].normal.impulse;
+  for (std::uint32_t k = m.first; k < m.first + m.count; ++k) load += normals_[k].impulse;
   double share[max_manifold_points];
   double torque = patch.rows[2].impulse;  // less what the force's shares turn about the centre
   for (std::uint32_t i = 0; i < m.count; ++i) {
     const Point& p = points_[m.first + i];
-    share[i] = load > 0.0 ? p.normal.impulse / load : 1.0 / m.count;
+    share[i] = load > 0.0 ? normals_[m.first + i].impulse / load : 1.0 / m.count;
     torque -= share[i] * m.normal.dot(in_plane(p.r_b - patch.r_b, m.normal).cross(force));
   }
   for (std::uint32_t i = 0; i < m.count; ++i) {
-    Point& p = points_[m.first + i];
+    const Point& p = points_[m.first + i];
+    FrictionRows& rows = frictions_[m.first + i];
     const Vec3 f = share[i] * force + (torque / patch.spread) *
                                           m.normal.cross(in_plane(p.r_b - patch.r_b, m.normal));
-    p.tangent1.impulse = f.dot(p.tangent1.jacobian.linear);
-    p.tangent2.impulse = f.dot(p.tangent2.jacobian.linear);
+    rows.tangent1.impulse = f.dot(rows.tangent1.jacobian.linear);
+    rows.tangent2.impulse = f.dot(rows.tangent2.jacobian.linear);
   }
 }
 

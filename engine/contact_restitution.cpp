@@ -71,7 +71,7 @@ void ContactConstraints::mark_supported(const Acceleration* acceleration) {
     };
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       const Point& p = points_[k];
-      if (!(p.separation <= tolerance && p.normal.impulse > 0.0 &&
+      if (!(p.separation <= tolerance && normals_[k].impulse > 0.0 &&
             p.approach >= -settings_->restitution_threshold))
         continue;
       const Vec3 acc_a = of(m.a, p.r_a), acc_b = of(m.b, p.r_b);
@@ -185,7 +185,7 @@ double ContactConstraints::round_sweep(bool forward) {
       const Point& p = points_[m.first + i];
       member[i] = in_round(p.flags);
       all = all && member[i], any = any || member[i];
-      residual[i] = member[i] ? row_velocity(p.normal, a, b) - p.target : 0.0;
+      residual[i] = member[i] ? normal_velocity(m.normal, m.first + i, a, b) - p.target : 0.0;
       before[i] = p.round_impulse;
     }
     if (!any) continue;
@@ -202,9 +202,10 @@ double ContactConstraints::round_sweep(bool forward) {
       for (std::uint32_t i = 0; i < m.count; ++i) {
         Point& p = points_[m.first + i];
         if (!in_round(p.flags)) continue;
-        const double v = row_velocity(p.normal, a, b);
-        const double total = std::max(p.round_impulse - p.normal.mass * (v - p.target), 0.0);
-        apply_row(p.normal, a, b, total - p.round_impulse);
+        const double v = normal_velocity(m.normal, m.first + i, a, b);
+        const double total =
+            std::max(p.round_impulse - normals_[m.first + i].mass * (v - p.target), 0.0);
+        apply_normal(m.normal, m.first + i, a, b, total - p.round_impulse);
         p.round_impulse = total;
       }
     }
@@ -233,7 +234,7 @@ bool ContactConstraints::start_round(bool first) {
       if (p.flags & event) p.flags = static_cast<std::uint8_t>((p.flags & ~event) | fired);
       if (!(p.flags & touching_end) || (p.flags & fired)) continue;
       const double a_n = normal_acceleration(m, p);
-      const double v = row_velocity(p.normal, solver_[m.a], solver_[m.b]);
+      const double v = normal_velocity(m.normal, k, solver_[m.a], solver_[m.b]);
       double w;
       if (first) {  // came in by itself, fast (a bounce) or not (a landing), or not at all
         w = impact_velocity(m, p);
