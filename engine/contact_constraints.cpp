@@ -747,7 +747,7 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Eigen::Matrix4d shifted = k + scale * c * c.transpose();
   bool invertible = false;
   Eigen::Matrix4d inverse;
-  shifted.computeInverseWithCheck(inverse, invertible, 1e-12 * std::pow(scale, 4));
+  shifted.computeInverseWithCheck(inverse, invertible, 1e-12 * (scale * scale) * (scale * scale));
   if (!invertible || !inverse.allFinite()) return;
   Eigen::Matrix4d pseudo = inverse - c * c.transpose() / scale;
   for (int i = count; i < 4; ++i) pseudo(i, i) = 0.0, k(i, i) = 0.0;

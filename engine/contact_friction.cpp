@@ -72,7 +72,8 @@ void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a
   }
   Eigen::Matrix3d inverse;
   bool invertible = false;
-  k.computeInverseWithCheck(inverse, invertible, 1e-12 * std::pow(k.trace(), 3));
+  const double trace = k.trace();  // the threshold's scale: a product, not std::pow's call
+  k.computeInverseWithCheck(inverse, invertible, 1e-12 * (trace * trace) * trace);
   if (!invertible || !inverse.allFinite()) return;
   patch.inverse = inverse;
   patch.r_a = r_a, patch.r_b = r_b;
@@ -132,8 +133,13 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
   if (load == 0.0 && old.isZero()) return;
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
-  const Eigen::Vector3d velocity(row_velocity(rows[0], a, b), row_velocity(rows[1], a, b),
-                                 row_velocity(rows[2], a, b));
+  // The velocities in locals (as solve_friction): row_velocity and apply_row term for term,
+  // without reading back what the previous row's update stored.
+  Vec3 va = a.velocity, wa = a.angular_velocity, vb = b.velocity, wb = b.angular_velocity;
+  const Vec3 dv = vb - va;
+  const Eigen::Vector3d velocity(jacobian_velocity(rows[0].jacobian, dv, wa, wb),
+                                 jacobian_velocity(rows[1].jacobian, dv, wa, wb),
+                                 jacobian_velocity(rows[2].jacobian, dv, wa, wb));
   Eigen::Vector3d next = old - patch.inverse * velocity;
   const double limit = m.friction * load, twist_limit = m.friction * lever;
   const double length_squared = next[0] * next[0] + next[1] * next[1];
@@ -143,10 +149,17 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
     next[0] *= scale, next[1] *= scale;
   }
   next[2] = std::clamp(next[2], -twist_limit, twist_limit);
+  const double ma = a.inverse_mass, mb = b.inverse_mass;
   for (int i = 0; i < 3; ++i) {
-    apply_row(rows[i], a, b, next[i] - old[i]);
+    const double lambda = next[i] - old[i];
+    va -= (ma * lambda) * rows[i].jacobian.linear;
+    wa -= lambda * rows[i].weighted_a;
+    vb += (mb * lambda) * rows[i].jacobian.linear;
+    wb += lambda * rows[i].weighted_b;
     rows[i].impulse = next[i];
   }
+  a.velocity = va, a.angular_velocity = wa;
+  b.velocity = vb, b.angular_velocity = wb;
 }
 
 // The patch's impulse back on its points (see the top), for the reports and the next step.
