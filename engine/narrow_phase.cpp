@@ -212,13 +212,23 @@ Manifold face_contact(const Pose& ref, const Vec3& ref_half, int axis, const Vec
   const std::uint32_t seed =
       mix(feature_seed, static_cast<std::uint32_t>(2 * face + (face_sign > 0)));
   const Vec3 ref_center = ref.position + ref_half[axis] * ref_normal;
+  auto keep = [&](ContactPoint* kept, int& kept_count) {
+    for (int k = 0; k < count; ++k) {
+      const double gap = ref_normal.dot(polygon[k].p - ref_center);
+      if (gap <= margin)
+        kept[kept_count++] = {polygon[k].p - 0.5 * gap * ref_normal, -gap,
+                              mix(seed, polygon[k].id)};
+    }
+  };
+  if (count <= max_manifold_points) {  // kept as they are (reduce_face_points): made in place
+    Manifold m;
+    m.normal = ref_normal;
+    keep(m.points.data(), m.count);
+    return m;
+  }
   ContactPoint kept[max_clip_vertices];
   int kept_count = 0;
-  for (int k = 0; k < count; ++k) {
-    const double gap = ref_normal.dot(polygon[k].p - ref_center);
-    if (gap <= margin)
-      kept[kept_count++] = {polygon[k].p - 0.5 * gap * ref_normal, -gap, mix(seed, polygon[k].id)};
-  }
+  keep(kept, kept_count);
   return reduce_face_points(kept, kept_count, ref_normal);
 }
 
