@@ -116,7 +116,7 @@ void ContactConstraints::warm_start(SolverBody* solver) {
     SolverBody& b = solver[m.b];
     const std::size_t index = static_cast<std::size_t>(&m - manifolds_.data());
     prepare_patch(index, a, b);  // contact_friction.cpp
-    const bool patch = patches_[index].active;
+    const bool patch = m.patch;
     if (!patch && may_be_patch(m)) prepare_friction(m, a, b);  // add_manifold left them
     const auto [first, last] = previous_points(m, hint);
     hint = last;
@@ -213,17 +213,17 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
       prepare_normal(k, m.normal, p.r_a, p.r_b, a, b);
     }
     Patch& patch = patches_[mi];
-    if (patch.active) {
+    if (m.patch) {
       // The patch keeps its impulses at the new arms. Only if it cannot be prepared there do
       // its points take them (spread at the patch's old centre and spread, as before the
       // move) and solve their own rows; else store() spreads them at the end of the step.
       const Vec3 centre = patch.r_b;
       const double spread = patch.spread;
       prepare_patch(mi, a, b);
-      if (!patch.active) {
-        patch.r_b = centre, patch.spread = spread, patch.active = true;
+      if (!m.patch) {
+        patch.r_b = centre, patch.spread = spread, m.patch = true;
         spread_patch(mi);
-        patch.active = false;
+        m.patch = false;
         prepare_friction(m, a, b);
       }
     } else {
@@ -342,7 +342,7 @@ bool ContactConstraints::normal_bias(const Manifold& m, std::uint32_t k, NormalM
 void ContactConstraints::solve_friction(Manifold& m, bool forward) {
   if (!(m.friction > 0.0)) return;
   const std::size_t index = static_cast<std::size_t>(&m - manifolds_.data());
-  if (patches_[index].active) return solve_patch(index);  // contact_friction.cpp
+  if (m.patch) return solve_patch(index);  // contact_friction.cpp
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
   // The velocities in locals for the manifold's points: the stores of the impulses could

@@ -309,18 +309,22 @@ class ContactConstraints {
   // Sets point k's normal row for arms r_a, r_b (prepare_row of engine/constraint_row.hpp).
   void prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a, const Vec3& r_b,
                       const SolverBody& a, const SolverBody& b);
-  struct Manifold {
+  // What the sweeps read of a manifold is its first cache line (the rest is read once or twice
+  // a step).
+  struct alignas(64) Manifold {
     std::uint32_t a, b;          // solver slots
     std::uint32_t first, count;  // points
-    BodyId id_a, id_b;
-    std::size_t plane;
     Vec3 normal;
-    Vec3 start_normal;           // the normal found (positions_moved may turn `normal`)
-    double friction, restitution;
-    double radius_a, radius_b;   // m, of a sphere (its witness is recomputed), else 0
-    Softness softness;
+    double friction;
     double compliance;           // γ of the soft block, 1/kg
     bool block;                  // the block matrices below are usable
+    bool patch;                  // its friction is a patch (patches_, prepare_patch)
+    BodyId id_a, id_b;
+    std::size_t plane;
+    Vec3 start_normal;           // the normal found (positions_moved may turn `normal`)
+    double restitution;
+    double radius_a, radius_b;   // m, of a sphere (its witness is recomputed), else 0
+    Softness softness;
   };
   using Mat4 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
   using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
@@ -335,11 +339,12 @@ class ContactConstraints {
     void make(const Eigen::Matrix4d& matrix, int size, double threshold);
     void solve(const Eigen::Vector4d& right, Eigen::Vector4d& solved) const;
   };
-  struct Block {
-    Mat4 k;              // J W Jᵀ of the normal rows
+  // On cache lines: a sweep's block solve reads one inverse (two lines) and c.
+  struct alignas(64) Block {
     Mat4 rigid_inverse;  // K⁺
     Mat4 soft_inverse;   // (K + Γ)⁻¹ on the range of K
     Vec4 null;           // c, the unit null vector of K of four points (else zero)
+    Mat4 k;              // J W Jᵀ of the normal rows
     SubsetFactor subset[2][2];  // the last subsets solved, rigid and soft (solve_subset)
   };
 
@@ -405,8 +410,7 @@ class ContactConstraints {
     Vec3 r_a, r_b;          // m, the centre's lever arms
     double distance[max_manifold_points];  // m, each point's from the centre, in the plane
     double spread;          // m², Σ distance²
-    bool active;            // else each point has its own friction rows
-  };
+  };                        // (Manifold::patch says whether it is used)
   void prepare_patch(std::size_t manifold, const SolverBody& a, const SolverBody& b);
   // Whether prepare_patch can make m a patch (its points' friction rows are then prepared only
   // when it does not: prepare_friction).

@@ -43,9 +43,9 @@ Vec3 in_plane(const Vec3& v, const Vec3& n) { return v - n.dot(v) * n; }
 // from the points, or positions_moved after the bodies moved, which keeps them).
 void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a,
                                        const SolverBody& b) {
-  const Manifold& m = manifolds_[manifold];
+  Manifold& m = manifolds_[manifold];
   Patch& patch = patches_[manifold];
-  patch.active = false;
+  m.patch = false;
   if (!may_be_patch(m)) return;
   Vec3 r_a = Vec3::Zero(), r_b = Vec3::Zero();
   for (std::uint32_t k = m.first; k < m.first + m.count; ++k)
@@ -77,7 +77,7 @@ void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a
   if (!invertible || !inverse.allFinite()) return;
   patch.inverse = inverse;
   patch.r_a = r_a, patch.r_b = r_b;
-  patch.active = true;
+  m.patch = true;
 }
 
 void ContactConstraints::prepare_friction(const Manifold& m, const SolverBody& a,
@@ -166,7 +166,7 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
 void ContactConstraints::spread_patch(std::size_t manifold) {
   const Manifold& m = manifolds_[manifold];
   const Patch& patch = patches_[manifold];
-  if (!patch.active) return;
+  if (!m.patch) return;
   const Vec3 force = patch.rows[0].impulse * patch.rows[0].jacobian.linear +
                      patch.rows[1].impulse * patch.rows[1].jacobian.linear;
   double load = 0.0;
