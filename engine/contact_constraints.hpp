@@ -260,12 +260,15 @@ class ContactConstraints {
   // - Point (points_): the rest, read once or twice a step (arms, witnesses, gaps, restitution).
   // The arrays are not zeroed when a point is made (DefaultInit): add_manifold sets every field
   // of NormalRow and Point (a field added here must be set there too).
+  // Its first cache line is what a sweep needs to find the row's velocity and impulse (a
+  // manifold whose rows carry nothing and do not approach is left alone: solve_normals), the
+  // second what it needs to change them.
   struct alignas(64) NormalRow {
     Vec3 angular_a, angular_b;    // r_a × n, r_b × n
-    Vec3 weighted_a, weighted_b;  // I_a⁻¹ angular_a, I_b⁻¹ angular_b
-    double mass;                  // 1/(J W Jᵀ); 0 when neither body can move along n
     double impulse;               // N s: the sweeps' accumulated λ (≥ 0)
     double push_impulse;          // N s: soft_step's position feedback (on the push velocities)
+    Vec3 weighted_a, weighted_b;  // I_a⁻¹ angular_a, I_b⁻¹ angular_b
+    double mass;                  // 1/(J W Jᵀ); 0 when neither body can move along n
     double relax_cap;             // N s: relax may only take back impulse from a point with a gap
   };
   struct FrictionRows {
