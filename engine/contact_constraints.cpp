@@ -277,19 +277,6 @@ double ContactConstraints::current_separation(const Manifold& m, const Point& p)
   return p.separation + m.normal.dot(moved);
 }
 
-// See the header (NormalRow).
-ConstraintRow ContactConstraints::normal_row(const Vec3& normal, std::uint32_t k) const {
-  const NormalRow& n = normals_[k];
-  ConstraintRow row;
-  row.jacobian = {normal, n.angular_a, n.angular_b};
-  row.weighted_a = n.weighted_a;
-  row.weighted_b = n.weighted_b;
-  row.mass = n.mass;
-  row.impulse = n.impulse;
-  row.lower = 0.0;
-  return row;
-}
-
 void ContactConstraints::prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a,
                                         const Vec3& r_b, const SolverBody& a,
                                         const SolverBody& b) {
@@ -639,11 +626,15 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     if (!active[i]) continue;
     const std::uint32_t k = m.first + i;
     normal_bias(m, k, mode, bias[i], soft[i]);
-    ConstraintRow row = normal_row(m.normal, k);  // with this mode's impulse and bounds
-    row.impulse = impulse_of(k, which);
-    row.upper = cap[i];
-    solve_row(row, a, b, bias[i], soft[i]);
-    impulse_of(k, which) = row.impulse;
+    // solve_row (engine/constraint_row.hpp) term for term, on this mode's impulse within
+    // [0, cap], without copying the point's row into a ConstraintRow.
+    double& impulse = impulse_of(k, which);
+    const double v = normal_velocity(m.normal, k, a, b);
+    const double change = -normals_[k].mass * (soft[i].mass_scale * v + bias[i]) -
+                          soft[i].impulse_scale * impulse;
+    const double total = std::clamp(impulse + change, 0.0, cap[i]);
+    apply_normal(m.normal, k, a, b, total - impulse);
+    impulse = total;
   }
   return largest;
 }

@@ -292,7 +292,7 @@ class ContactConstraints {
     bool turned;              // a sphere pair taken at the end poses (positions_moved)
   };
   // The normal row of point k (of manifold m) as the sweeps use it: its velocity J v, the
-  // impulse λ applied along it (Δv = W Jᵀ λ), the whole row (for solve_row). The same
+  // impulse λ applied along it (Δv = W Jᵀ λ). The same
   // arithmetic as row_velocity/apply_row of engine/constraint_row.hpp with linear = m.normal.
   double normal_velocity(const Vec3& normal, std::uint32_t k, const SolverBody& a,
                          const SolverBody& b) const {
@@ -308,7 +308,6 @@ class ContactConstraints {
     b.velocity += (b.inverse_mass * lambda) * normal;
     b.angular_velocity += lambda * row.weighted_b;
   }
-  ConstraintRow normal_row(const Vec3& normal, std::uint32_t k) const;
   // Sets point k's normal row for arms r_a, r_b (prepare_row of engine/constraint_row.hpp).
   void prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a, const Vec3& r_b,
                       const SolverBody& a, const SolverBody& b);
