@@ -24,10 +24,11 @@ double advance_to_contact(Distance distance, double speed, double dt, double tol
 
 // The pose after time t as the shape's distances see it: a sphere's (or no shape's) distance
 // depends on its centre alone, so its rotation is left as it was (no sine and cosine per
-// iteration); a box turns as advance() turns it.
+// iteration); every other shape turns as advance() turns it.
 Pose advance_shape(const Shape& shape, const Pose& pose, const Motion& motion, double t) {
-  if (shape.kind == ShapeKind::box) return advance(pose, motion, t);
-  return {pose.position + t * motion.velocity, pose.rotation};
+  if (shape.kind == ShapeKind::sphere || shape.kind == ShapeKind::none)
+    return {pose.position + t * motion.velocity, pose.rotation};
+  return advance(pose, motion, t);
 }
 
 }  // namespace
