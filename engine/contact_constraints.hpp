@@ -83,6 +83,13 @@
 //   The speculative impulse the sweeps stopped such an impact with (inelastic, and passed on
 //   inelastically along a chain of gaps closed in one step) is taken back first, where nothing
 //   else pushed its bodies (take_back_speculative).
+//   A support is the whole stack under a body, not only the floor: the bodies held by resting
+//   contacts are found from the ground and static bodies up, contact by contact
+//   (contact_restitution.cpp mark_supported), and taken at the velocities they had before the
+//   step's forces (not what the sweeps left, which a soft column still giving way under the
+//   impact would put into w); a resting contact between two held bodies that the sweeps opened
+//   by a little still holds in the event, closing its gap s and no more (v_n ≥ −s/Δt). So a
+//   ball leaves a column of boxes as from the floor (tests/engine/bounce_on_stack_test.cpp).
 // - Lever arms after the positions moved: an impulse pair at one point conserves angular
 //   momentum, but the relax and restitution impulses act after the bodies moved by Δx_a, Δx_b,
 //   and with the arms of the start, x_a + r_a and x_b + r_b are then two points h (u_b − u_a)
