@@ -46,16 +46,17 @@ enter 'x = setmetatable({}, {__name = "no_such_type"})'
 type_text 'x:'
 key Tab
 # Ctrl-C is a signal, not a key in the input queue: sent before the REPL has read what was typed,
-# it would reach the REPL first and the typed text would stay on the next line ('x:5*5').
+# it would reach the REPL first and the typed text would stay on the next line ('x:5*5'); sent
+# while the REPL still handles the Tab, it is noticed only when the next line is entered.
 wait_for "the REPL read 'x:' and the Tab" '> x:$'
-sleep 0.3
+wait_reading "the REPL handled the Tab and waits for a key"
 key C-c
 enter '5*5'
 wait_for "Tab on a value whose type loops in _G's __index returns" '^25$'
 type_text 'no_such_glo'
 key Tab
 wait_for "the REPL read 'no_such_glo' and the Tab" '> no_such_glo$'
-sleep 0.3
+wait_reading "the REPL handled the Tab and waits for a key"
 key C-c
 enter '4*4'
 wait_for "Tab on a missing global returns" '^16$'

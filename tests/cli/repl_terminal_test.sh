@@ -47,6 +47,7 @@ key C-l  # a clear screen for the tests below, which count prompts on it
 
 type_text 'error("this line was never run")'
 wait_for "a line typed" '^> error\("this line was never run"\)$'
+wait_reading "the REPL waits for the next key"
 key C-c
 enter '7*6'
 wait_for "Ctrl-C at the prompt clears the line" '^42$'

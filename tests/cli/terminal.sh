@@ -73,6 +73,36 @@ wait_exit() {
   [[ $(cat "$scratch/status") == "$2" ]] && pass || fail "exit status $(cat "$scratch/status"), want $2"
 }
 
+# wait_reading NAME: until rigidlab (the program in the terminal) sleeps in read(2) on its
+# standard input, seen twice 0.05 s apart: it has taken in every key sent so far and waits for
+# the next. A Ctrl-C sent then interrupts that read. Sent while the program is still handling a
+# key (a loaded machine can deschedule it there for a long while), it is only noticed when the
+# line is entered, which then is dropped. Where /proc/PID/syscall cannot be read (no ptrace
+# access), it waits 0.3 s instead.
+wait_reading() {
+  case_name=$1
+  local shell pid
+  shell=$(tmux -S "$socket" display -p '#{pane_pid}' 2>/dev/null || true)
+  pid=$(pgrep -P "${shell:-0}" 2>/dev/null | head -1 || true)
+  if [[ -z $pid ]] || ! cat "/proc/$pid/syscall" >/dev/null 2>&1; then
+    sleep 0.3
+    pass
+    return 0
+  fi
+  local deadline=$((SECONDS + wait_limit)) seen=0 state call
+  while ((seen < 2)); do
+    state=$(awk '{print $3}' "/proc/$pid/stat" 2>/dev/null || true)
+    call=$(cut -d' ' -f1,2 "/proc/$pid/syscall" 2>/dev/null || true)
+    if [[ $state == S && $call == "0 0x0" ]]; then seen=$((seen + 1)); else seen=0; fi
+    if ((SECONDS > deadline)); then
+      fail "rigidlab is not waiting for a key (state '$state', system call '$call')"
+      return 0
+    fi
+    sleep 0.05
+  done
+  pass
+}
+
 prompt_count() { screen | grep -cE '^> ' || true; }
 # wait_prompt NAME: until a new `> ` prompt has appeared after the last command.
 wait_prompt() {
