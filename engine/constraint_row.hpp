@@ -14,9 +14,10 @@
 // and a their opposites (001_* Appendix D: P = Jᵀ λ).
 //
 // The effective mass (001_* Appendix D) is 1/(J W Jᵀ), W the block-diagonal inverse mass
-// (m_a⁻¹ E, I_a⁻¹, m_b⁻¹ E, I_b⁻¹, world frame). coupling() below is the one place in the
-// engine where J W Jᵀ is written: the solver's rows, the manifold block matrices and
-// collide.effective_mass / collide.resolve (engine/impulses.hpp) all call it.
+// (m_a⁻¹ E, I_a⁻¹, m_b⁻¹ E, I_b⁻¹, world frame). coupling_parts() below is the one place in
+// the engine where J W Jᵀ is written: the solver's rows, the contacts' normal rows and
+// manifold block matrices, the friction patches and collide.effective_mass / collide.resolve
+// (engine/impulses.hpp) all reach it through coupling() and its variants.
 //
 // Soft rows (E. Catto, "Soft Step", Solver2D notes and Box2D v3's b2MakeSoft; E. Catto, "Soft
 // Constraints", GDC 2011): the velocity constraint J v + β C = 0 is replaced by
@@ -80,11 +81,20 @@ inline Jacobian angular_jacobian(const Vec3& k) { return {Vec3::Zero(), k, k}; }
 // 3 x 3 inverse mass matrix of a contact point are made of these entries.
 // The same with row j's angular parts already weighted (weighted_a = I_a⁻¹ angular_a, as a
 // prepared ConstraintRow holds them): no 3 x 3 products for the rows of a step's contacts.
+// The same from the rows' parts: the product of their linear parts l_i·l_j, row i's angular
+// parts and row j's weighted ones (a row stored without its linear part, as a contact's normal
+// row whose linear part is its manifold's normal, passes these).
+inline double coupling_parts(double linear_product, const Vec3& angular_a, const Vec3& angular_b,
+                             double inverse_mass_a, const Vec3& weighted_a, double inverse_mass_b,
+                             const Vec3& weighted_b) {
+  return (inverse_mass_a + inverse_mass_b) * linear_product + angular_a.dot(weighted_a) +
+         angular_b.dot(weighted_b);
+}
 inline double coupling_weighted(const Jacobian& i, const Jacobian& j, double inverse_mass_a,
                                 const Vec3& weighted_a, double inverse_mass_b,
                                 const Vec3& weighted_b) {
-  return (inverse_mass_a + inverse_mass_b) * i.linear.dot(j.linear) +
-         i.angular_a.dot(weighted_a) + i.angular_b.dot(weighted_b);
+  return coupling_parts(i.linear.dot(j.linear), i.angular_a, i.angular_b, inverse_mass_a,
+                        weighted_a, inverse_mass_b, weighted_b);
 }
 inline double coupling(const Jacobian& i, const Jacobian& j, double inverse_mass_a,
                        const Mat3& inverse_inertia_a, double inverse_mass_b,
@@ -124,33 +134,46 @@ struct ConstraintRow {
   double upper = unbounded;
 };
 
+// 1/k, the effective mass of a row whose J W Jᵀ is k; 0 when neither body can move along it.
+inline double inverse_or_zero(double k) { return k > 0.0 && std::isfinite(k) ? 1.0 / k : 0.0; }
+
 // Caches W Jᵀ and the effective mass for the bodies' present inverse inertias.
 inline void prepare_row(ConstraintRow& row, const SolverBody& a, const SolverBody& b) {
   row.weighted_a = a.inverse_inertia * row.jacobian.angular_a;
   row.weighted_b = b.inverse_inertia * row.jacobian.angular_b;
   const double k = coupling_weighted(row.jacobian, row.jacobian, a.inverse_mass, row.weighted_a,
                                      b.inverse_mass, row.weighted_b);
-  row.mass = k > 0.0 && std::isfinite(k) ? 1.0 / k : 0.0;
+  row.mass = inverse_or_zero(k);
 }
 
 // J v: the row's velocity (m/s or rad/s).
 // J v of a Jacobian, from the pair's relative velocity dv = v_b − v_a and angular velocities
 // (a sweep that keeps a pair's velocities in locals passes those).
+// The same from a Jacobian's parts (a row stored without its linear part passes it).
+inline double velocity_along(const Vec3& linear, const Vec3& angular_a, const Vec3& angular_b,
+                             const Vec3& dv, const Vec3& w_a, const Vec3& w_b) {
+  return linear.dot(dv) + angular_b.dot(w_b) - angular_a.dot(w_a);
+}
 inline double jacobian_velocity(const Jacobian& j, const Vec3& dv, const Vec3& w_a,
                                 const Vec3& w_b) {
-  return j.linear.dot(dv) + j.angular_b.dot(w_b) - j.angular_a.dot(w_a);
+  return velocity_along(j.linear, j.angular_a, j.angular_b, dv, w_a, w_b);
 }
 inline double row_velocity(const ConstraintRow& row, const SolverBody& a, const SolverBody& b) {
   return jacobian_velocity(row.jacobian, b.velocity - a.velocity, a.angular_velocity,
                            b.angular_velocity);
 }
 
-// Applies the impulse λ along the row: Δv = W Jᵀ λ.
+// Applies the impulse λ along the row: Δv = W Jᵀ λ; from the parts: the linear part and W's
+// angular parts of Jᵀ (weighted_a, weighted_b).
+inline void apply_parts(const Vec3& linear, const Vec3& weighted_a, const Vec3& weighted_b,
+                        SolverBody& a, SolverBody& b, double lambda) {
+  a.velocity -= (a.inverse_mass * lambda) * linear;
+  a.angular_velocity -= lambda * weighted_a;
+  b.velocity += (b.inverse_mass * lambda) * linear;
+  b.angular_velocity += lambda * weighted_b;
+}
 inline void apply_row(const ConstraintRow& row, SolverBody& a, SolverBody& b, double lambda) {
-  a.velocity -= (a.inverse_mass * lambda) * row.jacobian.linear;
-  a.angular_velocity -= lambda * row.weighted_a;
-  b.velocity += (b.inverse_mass * lambda) * row.jacobian.linear;
-  b.angular_velocity += lambda * row.weighted_b;
+  apply_parts(row.jacobian.linear, row.weighted_a, row.weighted_b, a, b, lambda);
 }
 
 // One Gauss-Seidel update of the row (Catto 2005, accumulated and clamped; Box2D v3's soft
@@ -158,11 +181,18 @@ inline void apply_row(const ConstraintRow& row, SolverBody& a, SolverBody& b, do
 //   Δλ = −mass (mass_scale·J v + bias) − impulse_scale·λ,
 // then λ + Δλ is clamped to [lower, upper] and the change applied. A rigid row with bias −t
 // reaches J v = t exactly. Returns |J v + bias| before the update, the row's velocity error.
+// updated_impulse is that update of an accumulated impulse at the row's velocity v (for a row
+// stored in another form: a contact's normal row).
+inline double updated_impulse(double mass, double impulse, double v, double bias,
+                              const Softness& soft, double lower, double upper) {
+  const double change = -mass * (soft.mass_scale * v + bias) - soft.impulse_scale * impulse;
+  return std::clamp(impulse + change, lower, upper);
+}
 inline double solve_row(ConstraintRow& row, SolverBody& a, SolverBody& b, double bias,
                         const Softness& soft) {
   const double v = row_velocity(row, a, b);
-  const double change = -row.mass * (soft.mass_scale * v + bias) - soft.impulse_scale * row.impulse;
-  const double total = std::clamp(row.impulse + change, row.lower, row.upper);
+  const double total =
+      updated_impulse(row.mass, row.impulse, v, bias, soft, row.lower, row.upper);
   apply_row(row, a, b, total - row.impulse);
   row.impulse = total;
   return std::abs(v + bias);

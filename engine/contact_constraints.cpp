@@ -251,7 +251,7 @@ void ContactConstraints::turn_to_centres(Manifold& m, const Vec3& apart) {
   const double from_a = m.radius_a + 0.5 * (length - m.radius_a - m.radius_b);
   p.r_a = p.start_r_a = from_a * m.normal;
   p.r_b = p.start_r_b = (from_a - length) * m.normal;
-  Vec3 t1 = f.tangent1.jacobian.linear - f.tangent1.jacobian.linear.dot(m.normal) * m.normal;
+  Vec3 t1 = in_plane(f.tangent1.jacobian.linear, m.normal);
   if (!(t1.norm() > 1e-9)) tangent_basis(m.normal, t1, t1);
   t1.normalize();
   const Vec3 t2 = m.normal.cross(t1);
@@ -285,9 +285,9 @@ void ContactConstraints::prepare_normal(std::uint32_t k, const Vec3& normal, con
   row.angular_b = r_b.cross(normal);
   row.weighted_a = a.inverse_inertia * row.angular_a;
   row.weighted_b = b.inverse_inertia * row.angular_b;
-  const double mass = (a.inverse_mass + b.inverse_mass) * normal.dot(normal) +
-                      row.angular_a.dot(row.weighted_a) + row.angular_b.dot(row.weighted_b);
-  row.mass = mass > 0.0 && std::isfinite(mass) ? 1.0 / mass : 0.0;
+  row.mass = inverse_or_zero(coupling_parts(normal.dot(normal), row.angular_a, row.angular_b,
+                                            a.inverse_mass, row.weighted_a, b.inverse_mass,
+                                            row.weighted_b));
 }
 
 // The velocity bias of p's normal row (solve_row drives J v toward −bias) and its softness,
@@ -626,13 +626,12 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     if (!active[i]) continue;
     const std::uint32_t k = m.first + i;
     normal_bias(m, k, mode, bias[i], soft[i]);
-    // solve_row (engine/constraint_row.hpp) term for term, on this mode's impulse within
-    // [0, cap], without copying the point's row into a ConstraintRow.
+    // solve_row (engine/constraint_row.hpp) on this mode's impulse within [0, cap], without
+    // copying the point's row into a ConstraintRow.
     double& impulse = impulse_of(k, which);
     const double v = normal_velocity(m.normal, k, a, b);
-    const double change = -normals_[k].mass * (soft[i].mass_scale * v + bias[i]) -
-                          soft[i].impulse_scale * impulse;
-    const double total = std::clamp(impulse + change, 0.0, cap[i]);
+    const double total =
+        updated_impulse(normals_[k].mass, impulse, v, bias[i], soft[i], 0.0, cap[i]);
     apply_normal(m.normal, k, a, b, total - impulse);
     impulse = total;
   }
@@ -711,13 +710,13 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   double trace = 0.0;
   // From the prepared normal rows' W Jᵀ (coupling_weighted), each pair once (K is symmetric).
   // J_i W J_jᵀ of two normal rows: their linear parts are both the manifold's normal.
-  const double linear = (a.inverse_mass + b.inverse_mass) * m.normal.dot(m.normal);
+  const double linear = m.normal.dot(m.normal);
   for (int j = 0; j < count; ++j) {
     const NormalRow& row = normals_[m.first + j];
     for (int i = 0; i <= j; ++i) {
       const NormalRow& other = normals_[m.first + i];
-      k(i, j) = k(j, i) = linear + other.angular_a.dot(row.weighted_a) +
-                          other.angular_b.dot(row.weighted_b);
+      k(i, j) = k(j, i) = coupling_parts(linear, other.angular_a, other.angular_b, a.inverse_mass,
+                                         row.weighted_a, b.inverse_mass, row.weighted_b);
     }
     trace += k(j, j);
   }

@@ -299,21 +299,18 @@ class ContactConstraints {
     bool turned;              // a sphere pair taken at the end poses (positions_moved)
   };
   // The normal row of point k (of manifold m) as the sweeps use it: its velocity J v, the
-  // impulse λ applied along it (Δv = W Jᵀ λ). The same
-  // arithmetic as row_velocity/apply_row of engine/constraint_row.hpp with linear = m.normal.
+  // impulse λ applied along it (Δv = W Jᵀ λ): row_velocity/apply_row of
+  // engine/constraint_row.hpp with linear = m.normal.
   double normal_velocity(const Vec3& normal, std::uint32_t k, const SolverBody& a,
                          const SolverBody& b) const {
     const NormalRow& row = normals_[k];
-    return normal.dot(b.velocity - a.velocity) + row.angular_b.dot(b.angular_velocity) -
-           row.angular_a.dot(a.angular_velocity);
+    return velocity_along(normal, row.angular_a, row.angular_b, b.velocity - a.velocity,
+                          a.angular_velocity, b.angular_velocity);
   }
   void apply_normal(const Vec3& normal, std::uint32_t k, SolverBody& a, SolverBody& b,
                     double lambda) const {
     const NormalRow& row = normals_[k];
-    a.velocity -= (a.inverse_mass * lambda) * normal;
-    a.angular_velocity -= lambda * row.weighted_a;
-    b.velocity += (b.inverse_mass * lambda) * normal;
-    b.angular_velocity += lambda * row.weighted_b;
+    apply_parts(normal, row.weighted_a, row.weighted_b, a, b, lambda);
   }
   // Sets point k's normal row for arms r_a, r_b (prepare_row of engine/constraint_row.hpp).
   void prepare_normal(std::uint32_t k, const Vec3& normal, const Vec3& r_a, const Vec3& r_b,

@@ -32,13 +32,6 @@ namespace rigidlab {
 
 using namespace contact_detail;
 
-namespace {
-
-// The part of v in the contact plane of unit normal n.
-Vec3 in_plane(const Vec3& v, const Vec3& n) { return v - n.dot(v) * n; }
-
-}  // namespace
-
 // The patch's rows at the arms the points have now (warm_start, which then sets its impulses
 // from the points, or positions_moved after the bodies moved, which keeps them).
 void ContactConstraints::prepare_patch(std::size_t manifold, const SolverBody& a,

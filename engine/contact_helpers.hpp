@@ -43,12 +43,14 @@ inline auto sort_key(BodyId a, BodyId b, std::size_t plane, std::uint32_t featur
 }
 inline auto sort_key(const ContactInfo& c) { return sort_key(c.a, c.b, c.plane, c.feature); }
 
+// The part of v in the contact plane of unit normal n.
+inline Vec3 in_plane(const Vec3& v, const Vec3& n) { return v - n.dot(v) * n; }
+
 // Velocity of the material point at offset r from the COM of a solver body (m/s).
 inline Vec3 point_velocity_of(const SolverBody& s, const Vec3& r) {
   return s.velocity + s.angular_velocity.cross(r);
 }
 
-inline double inverse_or_zero(double k) { return k > 0.0 && std::isfinite(k) ? 1.0 / k : 0.0; }
 
 // m, the farthest a shape is looked ahead in one step.
 constexpr double max_sweep = 1e6;
