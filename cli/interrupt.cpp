@@ -1,7 +1,10 @@
 #include "cli/interrupt.hpp"
 
+#include <poll.h>
 #include <time.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include "cli/hook_guard.hpp"
 #include "cli/limits.hpp"
@@ -13,6 +16,7 @@ namespace {
 volatile sig_atomic_t interrupt_pending = 0;
 struct timespec pending_since {};
 volatile sig_atomic_t prompt_interrupted = 0;
+volatile sig_atomic_t window_resized = 0;
 int call_depth = 0;  // InterruptibleCalls alive
 
 // Seconds a Ctrl-C may wait before the next one ends the process.
@@ -39,6 +43,7 @@ void on_sigint_while_running(int) {
 }
 
 void on_sigint_at_prompt(int) { prompt_interrupted = 1; }
+void on_resize_at_prompt(int) { window_resized = 1; }
 
 struct sigaction action(void (*handler)(int)) {
   struct sigaction result {};
@@ -74,15 +79,55 @@ bool interrupt_requested() { return interrupt_pending != 0; }
 
 void clear_interrupt() { interrupt_pending = 0; }
 
+// libedit catches SIGWINCH itself while it reads a line, but only once: its handler resizes,
+// then puts back the action it found (this one) and raises the signal again. The key reader
+// resizes for the later ones (wait_for_key).
 PromptInterrupt::PromptInterrupt() {
   prompt_interrupted = 0;
+  window_resized = 0;
   const struct sigaction handler = action(on_sigint_at_prompt);
   sigaction(SIGINT, &handler, &previous_);
+  struct sigaction resize = action(on_resize_at_prompt);
+  resize.sa_flags = SA_RESTART;  // a read(2) goes on (the lesson keys); ppoll(2) never does
+  sigaction(SIGWINCH, &resize, &previous_resize_);
 }
 
-PromptInterrupt::~PromptInterrupt() { sigaction(SIGINT, &previous_, nullptr); }
+PromptInterrupt::~PromptInterrupt() {
+  sigaction(SIGWINCH, &previous_resize_, nullptr);
+  sigaction(SIGINT, &previous_, nullptr);
+}
 
 bool PromptInterrupt::happened() const { return prompt_interrupted != 0; }
+
+KeyWait wait_for_key(int fd) {
+  sigset_t signals, previous;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGWINCH);
+  sigprocmask(SIG_BLOCK, &signals, &previous);
+  sigset_t while_waiting = previous;
+  sigdelset(&while_waiting, SIGINT);
+  sigdelset(&while_waiting, SIGWINCH);
+  KeyWait result = KeyWait::ready;
+  for (;;) {
+    if (prompt_interrupted != 0) {
+      result = KeyWait::interrupted;
+      break;
+    }
+    if (window_resized != 0) {
+      window_resized = 0;
+      result = KeyWait::resized;
+      break;
+    }
+    struct pollfd input {};
+    input.fd = fd;
+    input.events = POLLIN;
+    if (ppoll(&input, 1, nullptr, &while_waiting) >= 0 || errno != EINTR) break;
+    // EINTR: a flag above says which signal; another one (SIGCONT, say): wait on.
+  }
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
+  return result;
+}
 
 IgnoreStrayInterrupts::IgnoreStrayInterrupts() {
   struct sigaction ignore {};

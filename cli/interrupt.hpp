@@ -40,7 +40,8 @@ bool interrupt_requested();
 void clear_interrupt();
 
 // While alive, Ctrl-C sets a flag instead of ending the process, and interrupts a blocking
-// read (no SA_RESTART), so the line editor returns. Used around each prompt.
+// read (no SA_RESTART), so the line editor returns; a window resize (SIGWINCH) sets another,
+// for wait_for_key. Used around each prompt.
 class PromptInterrupt {
  public:
   PromptInterrupt();
@@ -52,7 +53,16 @@ class PromptInterrupt {
 
  private:
   struct sigaction previous_ {};
+  struct sigaction previous_resize_ {};
 };
+
+// For the line editor's key reader, under a PromptInterrupt: waits until `fd` has input (or an
+// end or error for read(2) to report), a Ctrl-C comes, also one that came before the wait
+// began, while the previous key was being handled (a Tab completion, a redisplay), or the
+// window is resized. Checking the flag and then calling read(2) would miss a Ctrl-C that comes
+// between the two; ppoll unblocks SIGINT and waits in one system call.
+enum class KeyWait { ready, interrupted, resized };
+KeyWait wait_for_key(int fd);
 
 // While alive, a Ctrl-C that comes outside a call and a prompt (while the REPL reports an error,
 // say: a second Ctrl-C just after the one that stopped a loop) is ignored instead of ending

@@ -1,11 +1,15 @@
 #include "cli/line_reader.hpp"
 
 #include <editline/readline.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <climits>
 #include <clocale>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <cwchar>
 
 #include "cli/completion.hpp"
 #include "cli/history_file.hpp"
@@ -17,9 +21,53 @@ namespace {
 
 constexpr int history_size = 1000;  // entries kept in the file
 
+// libedit's key reader (rl_getc_function): the next character typed, or -1 (the line ends) for
+// a Ctrl-C or the end of the input. libedit's own reader blocks in read(2) at once, so a
+// Ctrl-C that came while it handled the previous key was noticed only when the line was
+// entered, and that line was dropped (cli/interrupt.hpp, wait_for_key). A window resize
+// after the first in a line is passed on to libedit here (see PromptInterrupt). libedit's readline
+// layer takes what this returns as one wide character, so the bytes of a multibyte character
+// (é, →) are decoded here, in the terminal's locale; like libedit, an invalid byte is dropped.
+int read_key(FILE* stream) {
+  const int fd = fileno(stream);
+  char bytes[MB_LEN_MAX];
+  size_t count = 0;
+  for (;;) {
+    const KeyWait wait = wait_for_key(fd);
+    if (wait == KeyWait::interrupted) return -1;
+    if (wait == KeyWait::resized) {
+      rl_resize_terminal();
+      continue;
+    }
+    const ssize_t n = ::read(fd, bytes + count, 1);
+    if (n < 0 && errno == EINTR) continue;  // the wait sees whether it was a Ctrl-C
+    if (n <= 0) return -1;
+    ++count;
+    while (count > 0) {
+      std::mbstate_t state{};
+      wchar_t character = 0;
+      const size_t used = std::mbrtowc(&character, bytes, count, &state);
+      if (used == static_cast<size_t>(-2)) {  // incomplete: read on, unless it cannot end
+        if (count == sizeof bytes) count = 0;
+        break;
+      }
+      if (used != static_cast<size_t>(-1)) return static_cast<int>(character);
+      // Invalid: the last byte may start a character of its own.
+      if (count > 1) {
+        bytes[0] = bytes[count - 1];
+        count = 1;
+      } else {
+        count = 0;
+      }
+    }
+  }
+}
+
 class TerminalReader final : public LineReader {
  public:
   explicit TerminalReader(lua_State* L) {
+    // Before anything initialises libedit: it takes rl_getc_function only then.
+    rl_getc_function = read_key;
     std::setlocale(LC_CTYPE, "");  // multibyte input (é, →) in a UTF-8 terminal
     rl_readline_name = "rigidlab";  // for conditionals in ~/.editrc
     install_completion(L);

@@ -46,8 +46,7 @@ enter 'x = setmetatable({}, {__name = "no_such_type"})'
 type_text 'x:'
 key Tab
 # Ctrl-C is a signal, not a key in the input queue: sent before the REPL has read what was typed,
-# it would reach the REPL first and the typed text would stay on the next line ('x:5*5'); sent
-# while the REPL still handles the Tab, it is noticed only when the next line is entered.
+# it would reach the REPL first and the typed text would stay on the next line ('x:5*5').
 wait_for "the REPL read 'x:' and the Tab" '> x:$'
 wait_reading "the REPL handled the Tab and waits for a key"
 key C-c
@@ -63,5 +62,21 @@ wait_for "Tab on a missing global returns" '^16$'
 
 key C-d
 wait_exit "Ctrl-D at the prompt exits 0" 0
+
+# A Ctrl-C that comes while the REPL is still handling a key (here: echoing it, with every
+# write(2) made 0.3 s slow by strace) clears the line at once. It used to be noticed only when
+# the next line was entered, and that line was dropped: '1+3*3' silently, no '9'.
+if slow=$(slow_writes 300000); then
+  fast=$rigidlab
+  rigidlab=$slow
+  start HOME="$home"
+  wait_for "slow writes: the prompt" '^> $'
+  type_text '1+'
+  wait_for "slow writes: the REPL echoes '1+'" '^> 1\+$'
+  key C-c
+  enter '3*3'
+  wait_limit=30 wait_for "a Ctrl-C while a key is handled clears the line at once" '^9$'
+  rigidlab=$fast
+fi
 
 finish

@@ -160,4 +160,25 @@ else
   echo "no strace that can trace here, or a sanitizer build: the slow-write case is skipped"
 fi
 
+# Multibyte input in a UTF-8 terminal: the line editor's key reader decodes the bytes itself
+# (cli/line_reader.cpp), so é (2 bytes) and → (3) arrive whole, and editing moves and deletes
+# characters, not bytes.
+LC_ALL=C.UTF-8 start HOME="$home" LC_ALL=C.UTF-8
+wait_for "UTF-8: the prompt" '^> $'
+enter 's = "é→"'
+enter 'print(#s, s == "\u{e9}\u{2192}")'
+wait_for "é and → reach Lua as their 5 bytes" '^5[[:space:]]+true$'
+type_text 'x = "aé'
+key BSpace
+enter 'b"'
+enter 'print(x)'
+wait_for "Backspace deletes é whole" '^ab$'
+type_text 'y = "é"'
+key Left Left
+enter 'z'
+enter 'print(y)'
+wait_for "Left moves over é whole" '^zé$'
+key C-d
+wait_exit "UTF-8: Ctrl-D exits 0" 0
+
 finish
