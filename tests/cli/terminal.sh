@@ -78,14 +78,15 @@ wait_exit() {
 # cli/line_reader.cpp), seen twice 0.05 s apart: it has taken in every key sent so far. A
 # Ctrl-C sent before then could overtake keys still queued (a signal is not a key): the line
 # they were typed into would be cleared before they arrive, and they would land on the next.
-# Where /proc/PID/syscall cannot be read (no ptrace access), it waits 0.3 s instead.
+# Where /proc/PID/syscall cannot be read (no ptrace access), it waits 1 s instead: what a
+# loaded machine may take to read a queued key.
 wait_reading() {
   case_name=$1
   local shell pid
   shell=$(tmux -S "$socket" display -p '#{pane_pid}' 2>/dev/null || true)
   pid=$(pgrep -P "${shell:-0}" 2>/dev/null | head -1 || true)
   if [[ -z $pid ]] || ! cat "/proc/$pid/syscall" >/dev/null 2>&1; then
-    sleep 0.3
+    sleep 1
     pass
     return 0
   fi
