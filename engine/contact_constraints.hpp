@@ -334,7 +334,7 @@ class ContactConstraints {
   };
   using Mat4 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
   using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
-  // A subset's matrix made ready to solve (contact_constraints.cpp), for the rows `key` names:
+  // A subset's matrix made ready to solve (contact_blocks.cpp), for the rows `key` names:
   // bits 0-3 the free rows, 4-7 the rows taking part.
   struct SubsetFactor {
     static constexpr std::uint16_t none = 0xffff;
@@ -372,8 +372,6 @@ class ContactConstraints {
                                                                     const ContactInfo* hint) const;
   const ContactInfo* previous_point(const Point& p, const ContactInfo* first,
                                     const ContactInfo* last) const;
-  // The rigid block matrices, and the soft ones (push sweeps) with soft_too.
-  void prepare_block(std::size_t manifold, bool soft_too = true);
   double current_separation(const Manifold& m, const Point& p) const;
   void turn_to_centres(Manifold& m, const Vec3& apart);
   void take_back_speculative();
@@ -394,6 +392,10 @@ class ContactConstraints {
     }
     return normals_[k].push_impulse;
   }
+
+  // contact_blocks.cpp
+  // The rigid block matrices, and the soft ones (push sweeps) with soft_too.
+  void prepare_block(std::size_t manifold, bool soft_too = true);
   bool solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
                    const double* residual, const double* cap, Impulse which, Vec4* result);
   bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
