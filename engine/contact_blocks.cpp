@@ -45,6 +45,7 @@ Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
 void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Manifold& m = manifolds_[manifold];
   m.block = false;
+  m.block_state = prepared;
   for (auto& kept : blocks_[manifold].subset) kept[0].key = kept[1].key = SubsetFactor::none;
   const int count = static_cast<int>(m.count);
   if (count < 2) return;

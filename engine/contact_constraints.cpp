@@ -228,7 +228,8 @@ void ContactConstraints::positions_moved(SolverBody* solver) {
     } else {
       prepare_friction(m, a, b);
     }
-    prepare_block(mi, false);
+    if (m.block_state == prepared) prepare_block(mi, false);
+    else m.block_state = rigid_only;
   }
 }
 
@@ -399,7 +400,6 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     const NormalRow& p = normals_[m.first + i];
     active[i] = rows[i].active;
     cap[i] = mode == NormalMode::relax ? p.relax_cap : unbounded;
-    gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
     if (!active[i]) {
       all_active = false;
       residual[i] = 0.0;
@@ -418,7 +418,10 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     solved = solved && impulse == 0.0 && residual[i] >= 0.0;
   }
   if (solved) return largest;
-  if (m.block) {
+  if (block_usable(manifold)) {
+    // Γ: the same for all the points of a manifold (its compliance, made with the block).
+    for (std::uint32_t i = 0; i < m.count; ++i)
+      gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
     const Block& block = blocks_[manifold];
     const bool push = mode == NormalMode::push;
     Vec4 start;

@@ -77,8 +77,7 @@ void ContactConstraints::find(const std::vector<Body>& bodies, const std::vector
         collide_shapes(body_a.shape, pose_of(body_a), body_b.shape, pose_of(body_b), margin);
     if (m.count > 0) add_pair(bodies, m, pair.a, pair.b, no_plane, nullptr);
   }
-  blocks_.resize(manifolds_.size());
-  for (std::size_t m = 0; m < manifolds_.size(); ++m) prepare_block(m);
+  blocks_.resize(manifolds_.size());  // made when first needed (block_usable)
 }
 
 // Which contact a pair gets (see the header, "Speculative contacts"): the manifold at the start

@@ -192,7 +192,7 @@ double ContactConstraints::round_sweep(bool forward) {
     ++round_solves_;
     Vec4 start;
     const bool block =
-        m.block && (all ? solve_block(mi, blocks_[mi].rigid_inverse, 0.0,
+        block_usable(mi) && (all ? solve_block(mi, blocks_[mi].rigid_inverse, 0.0,
                                       residual, nullptr, Impulse::round, &start) ||
                               solve_subset(mi, member, residual, gamma, nullptr, Impulse::round,
                                            &start)
