@@ -86,6 +86,7 @@ void BroadPhase::check_proxy(ProxyId id, const char* function) const {
 void BroadPhase::buffer_move(ProxyId id) {
   Proxy& p = proxies_[id];
   if (p.moved) return;
+  if (!p.fresh) paired_boxes_[id] = fat_box(id);  // before its tree moves it
   p.moved = true;
   move_buffer_.push_back(id);  // never allocates: reserved for every proxy (create_proxy)
 }
@@ -100,7 +101,7 @@ ProxyId BroadPhase::create_proxy(const Aabb& box, std::uint64_t key, ProxyKind k
     // their push_backs allocates later. The new slot goes on the free list, so that a failed
     // insertion below leaves it there.
     proxies_.emplace_back();
-    runs_.emplace_back();
+    paired_boxes_.emplace_back();
     const std::size_t room = proxies_.capacity();
     for (std::vector<ProxyId>* ids : {&free_ids_, &move_buffer_, &pending_free_})
       if (ids->capacity() < room) ids->reserve(room);
@@ -115,7 +116,7 @@ ProxyId BroadPhase::create_proxy(const Aabb& box, std::uint64_t key, ProxyKind k
   p.key = key;
   p.kind = kind;
   p.leaf = leaf;
-  runs_[id] = PairRun{};
+  p.fresh = true;
   buffer_move(id);
   find_new_pairs(id);
   return id;
@@ -132,8 +133,8 @@ bool BroadPhase::move_proxy(ProxyId id, const Aabb& box, const Vec3& displacemen
   }
   const Aabb fat = fatten(box, displacement);
   p.box = box;
-  tree_for(p.kind).move(p.leaf, fat);
   buffer_move(id);
+  tree_for(p.kind).move(p.leaf, fat);
   find_new_pairs(id);
   return true;
 }
@@ -147,31 +148,12 @@ void BroadPhase::destroy_proxy(ProxyId id) {
   pending_free_.push_back(id);
 }
 
-// The same two proxies, not just the same keys: a key destroyed and given to a new proxy in the
-// same step names a new pair (the old one is dropped with the destroyed proxy).
-// A proxy's run is short (its neighbours), except a fixed proxy's under a heap: that one is
-// searched by halves.
+// Whether the pair was in pairs_ at the last update: both proxies were there (a key destroyed
+// and given to a new proxy since names a new pair) and their fat boxes then overlapped (see
+// paired_boxes_). Never two fixed proxies: find_new_pairs does not look for those.
 bool BroadPhase::has_pair(const BroadPhasePair& pair) const {
-  const PairRun run = runs_[pair.proxy_a];
-  const BroadPhasePair* first = pairs_.data() + run.first;
-  const BroadPhasePair* last = first + run.count;
-  if (run.count > 16) first = std::lower_bound(first, last, pair);
-  for (; first != last && first->key_b <= pair.key_b; ++first)
-    if (first->key_b == pair.key_b)
-      return first->proxy_a == pair.proxy_a && first->proxy_b == pair.proxy_b;
-  return false;
-}
-
-// The runs of pairs_ by proxy_a. Every proxy in a pair is live (update_pairs has just dropped
-// the destroyed ones), so keys are unique and a key's run is its proxy's.
-void BroadPhase::index_pairs() {
-  for (std::size_t i = 0; i < pairs_.size();) {
-    const ProxyId a = pairs_[i].proxy_a;
-    std::size_t end = i + 1;
-    while (end < pairs_.size() && pairs_[end].proxy_a == a) ++end;
-    runs_[a] = PairRun{static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(end - i)};
-    i = end;
-  }
+  if (proxies_[pair.proxy_a].fresh || proxies_[pair.proxy_b].fresh) return false;
+  return paired_box(pair.proxy_a).overlaps(paired_box(pair.proxy_b));
 }
 
 // The pairs of a proxy that has just been created or given a new fat box and that are not in the
@@ -206,7 +188,6 @@ void BroadPhase::find_new_pairs(ProxyId id) {
 void BroadPhase::drop_stale_pairs() {
   std::size_t kept = 0;
   for (const BroadPhasePair& pair : pairs_) {
-    runs_[pair.proxy_a] = PairRun{};  // index_pairs sets it again
     const Proxy& a = proxies_[pair.proxy_a];
     const Proxy& b = proxies_[pair.proxy_b];
     const bool stale = a.destroyed || b.destroyed ||
@@ -239,8 +220,7 @@ void BroadPhase::update_pairs() {
     std::merge(pairs_.begin(), pairs_.end(), added_.begin(), added_.end(), merged_.begin());
     pairs_.swap(merged_);
   }
-  index_pairs();
-  for (const ProxyId id : move_buffer_) proxies_[id].moved = false;
+  for (const ProxyId id : move_buffer_) proxies_[id].moved = proxies_[id].fresh = false;
   move_buffer_.clear();
   for (const ProxyId id : pending_free_) {
     proxies_[id] = Proxy{};
@@ -253,7 +233,7 @@ void BroadPhase::clear() {
   moving_.clear();
   fixed_.clear();
   proxies_.clear();
-  runs_.clear();
+  paired_boxes_.clear();
   for (std::vector<ProxyId>* ids : {&free_ids_, &move_buffer_, &pending_free_}) ids->clear();
   for (std::vector<BroadPhasePair>* list : {&pairs_, &added_, &removed_, &merged_, &candidates_})
     list->clear();
@@ -268,7 +248,7 @@ void BroadPhase::reserve(std::int32_t proxies, std::size_t pairs) {
   if (proxies > 0) {
     const auto n = static_cast<std::size_t>(proxies);
     proxies_.reserve(n);
-    runs_.reserve(n);
+    paired_boxes_.reserve(n);
     for (std::vector<ProxyId>* ids : {&free_ids_, &move_buffer_, &pending_free_})
       ids->reserve(std::max(n, proxies_.capacity()));
     moving_.reserve(proxies);
@@ -303,10 +283,6 @@ std::string BroadPhase::check() const {
       return at + ": two fixed proxies";
     if (!fat_box(pair.proxy_a).overlaps(fat_box(pair.proxy_b)))
       return at + ": fat boxes apart";
-    const PairRun run = runs_[pair.proxy_a];
-    if (!(run.first <= i && i < run.first + run.count) && move_buffer_.empty() &&
-        pending_free_.empty())
-      return at + ": not in its proxy's run";
   }
   return "";
 }
