@@ -421,7 +421,7 @@ class ContactConstraints {
   bool start_round(bool first);
   void link_bodies();
   void gather_round(int hops);
-  double round_sweep(bool forward);
+  double round_sweep(bool forward, double& peak);
 
   // contact_friction.cpp: the friction of a flat manifold as one patch (see there).
   struct Patch {
