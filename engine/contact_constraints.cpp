@@ -382,11 +382,14 @@ void ContactConstraints::solve_friction(Manifold& m, bool forward) {
 // Rows that carry no impulse and do not approach (r = J v + bias ≥ 0 on every active row, all
 // λ = 0) are already solved: λ' = 0 meets every form's conditions (w = r ≥ 0, λ' = 0), so the
 // manifold is left alone (a pyramid's boxes touching side by side, a heap's grazing spheres).
-double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) {
+// A template on the mode: the sweeps call it some 24 times per manifold and step, and each
+// mode's tests then fold away.
+template <NormalMode mode>
+double ContactConstraints::solve_normals(std::size_t manifold) {
   Manifold& m = manifolds_[manifold];
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
-  const Impulse which = mode == NormalMode::push ? Impulse::push : Impulse::sweep;
+  constexpr Impulse which = mode == NormalMode::push ? Impulse::push : Impulse::sweep;
   double bias[max_manifold_points], residual[max_manifold_points];
   double gamma[max_manifold_points], cap[max_manifold_points];
   Softness soft[max_manifold_points];
@@ -407,7 +410,7 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     }
     const double velocity = linear + p.angular_b.dot(b.angular_velocity) -
                             p.angular_a.dot(a.angular_velocity);
-    const double impulse = which == Impulse::push ? p.push_impulse : p.impulse;
+    const double impulse = mode == NormalMode::push ? p.push_impulse : p.impulse;
     // The block form takes β C without the mass scale (which its matrix holds as Γ, the same
     // for all the points of a manifold: they share their softness): offset = bias/mass_scale.
     residual[i] = velocity + rows[i].offset;
@@ -423,7 +426,7 @@ double ContactConstraints::solve_normals(std::size_t manifold, NormalMode mode) 
     for (std::uint32_t i = 0; i < m.count; ++i)
       gamma[i] = mode == NormalMode::push ? m.compliance : 0.0;
     const Block& block = blocks_[manifold];
-    const bool push = mode == NormalMode::push;
+    constexpr bool push = mode == NormalMode::push;
     Vec4 start;
     if (all_active) {
       if (solve_block(manifold, push ? block.soft_inverse : block.rigid_inverse,
@@ -468,16 +471,26 @@ double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forwa
                                  SolverBody* push) {
   if (!mode_rows(mode).ready) prepare_mode(mode);
   if (push != nullptr && !push_rows_.ready) prepare_mode(NormalMode::push);
+  switch (mode) {
+    case NormalMode::velocity: return sweep_as<NormalMode::velocity>(solver, forward, push);
+    case NormalMode::push: return sweep_as<NormalMode::push>(solver, forward, push);
+    case NormalMode::relax: break;
+  }
+  return sweep_as<NormalMode::relax>(solver, forward, push);
+}
+
+template <NormalMode mode>
+double ContactConstraints::sweep_as(SolverBody* solver, bool forward, SolverBody* push) {
   const std::size_t n = manifolds_.size();
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t m = forward ? k : n - 1 - k;
     solver_ = solver;
     if (mode != NormalMode::push) solve_friction(manifolds_[m], forward);
-    largest = std::max(largest, solve_normals(m, mode));
+    largest = std::max(largest, solve_normals<mode>(m));
     if (push == nullptr) continue;
     solver_ = push;
-    solve_normals(m, NormalMode::push);
+    solve_normals<NormalMode::push>(m);
   }
   solver_ = solver;
   return largest;

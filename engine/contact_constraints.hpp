@@ -382,7 +382,10 @@ class ContactConstraints {
   // stage instead of once per sweep: the biases depend on the gaps, fixed within a stage.
   void prepare_mode(NormalMode mode);
   void solve_friction(Manifold& m, bool forward);
-  double solve_normals(std::size_t manifold, NormalMode mode);
+  template <NormalMode mode>
+  double solve_normals(std::size_t manifold);
+  template <NormalMode mode>
+  double sweep_as(SolverBody* solver, bool forward, SolverBody* push);
   // Which impulse of a point a block solve accumulates.
   enum class Impulse { sweep, round, push };
   double& impulse_of(std::uint32_t k, Impulse which) {

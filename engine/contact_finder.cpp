@@ -195,7 +195,7 @@ void ContactConstraints::add_manifold(const std::vector<Body>& bodies, const rig
   const double weight_a = sa.inverse_mass / (sa.inverse_mass + sb.inverse_mass);
   const Vec3 shift = toi * (weight_a * sa.velocity + (1.0 - weight_a) * sb.velocity);
   // A manifold that may hold its friction as a patch (prepare_patch) leaves its points'
-  // friction rows unprepared until they are needed (prepare_friction).
+  // friction rows unprepared until they are needed (prepare_friction): their directions only.
   const bool patch = may_be_patch(c);
   for (int k = 0; k < m.count; ++k) {
     const ContactPoint& found = m.points[k];
@@ -226,22 +226,22 @@ void ContactConstraints::add_manifold(const std::vector<Body>& bodies, const rig
     // frictionless contact then never spins it.
     if (weight_a == 0.0 && c.radius_b > 0.0) p.r_b = -c.radius_b * c.normal;
     if (weight_a == 1.0 && c.radius_a > 0.0) p.r_a = c.radius_a * c.normal;
-    if (c.radius_a > 0.0 && c.radius_b > 0.0) {
-      central_sphere_point(c, p, body_a->position, body_b.position);
-    } else {
-      const Vec3 relative = point_velocity_of(sb, p.r_b) - point_velocity_of(sa, p.r_a);
-      // The gap at the start of the step: found at τ, it closed at the rate −v_n since.
-      p.separation = gap - toi * c.normal.dot(relative);
-    }
+    const bool spheres = c.radius_a > 0.0 && c.radius_b > 0.0;
+    if (spheres) central_sphere_point(c, p, body_a->position, body_b.position);
     p.start_r_a = p.r_a, p.start_r_b = p.r_b;
     const Vec3 relative = point_velocity_of(sb, p.r_b) - point_velocity_of(sa, p.r_a);
+    // The gap at the start of the step: found at τ, it closed at the rate −v_n since.
+    if (!spheres) p.separation = gap - toi * c.normal.dot(relative);
     p.approach = c.normal.dot(relative);
     Vec3 t1, t2;
     friction_directions(c.normal, relative - p.approach * c.normal, t1, t2);
-    f.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
-    f.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
     prepare_normal(index, c.normal, p.r_a, p.r_b, sa, sb);
-    if (!patch) {
+    if (patch) {  // only the directions are read (warm start, store) until prepare_friction
+      f.tangent1.jacobian.linear = t1;
+      f.tangent2.jacobian.linear = t2;
+    } else {
+      f.tangent1.jacobian = point_jacobian(t1, p.r_a, p.r_b);
+      f.tangent2.jacobian = point_jacobian(t2, p.r_a, p.r_b);
       prepare_row(f.tangent1, sa, sb);
       prepare_row(f.tangent2, sa, sb);
     }
