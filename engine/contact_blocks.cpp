@@ -4,6 +4,7 @@
 // are solved as a block").
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <Eigen/LU>
 
@@ -13,6 +14,21 @@
 namespace rigidlab {
 
 using namespace contact_detail;
+
+namespace {
+
+// f(std::integral_constant<Impulse, which>): the runtime `which` to the template's instance.
+template <class Impulse, class F>
+bool with_impulse(Impulse which, F&& f) {
+  switch (which) {
+    case Impulse::sweep: return f(std::integral_constant<Impulse, Impulse::sweep>{});
+    case Impulse::round: return f(std::integral_constant<Impulse, Impulse::round>{});
+    case Impulse::push: break;
+  }
+  return f(std::integral_constant<Impulse, Impulse::push>{});
+}
+
+}  // namespace
 
 // ---- the block matrices ---------------------------------------------------------------------
 
@@ -122,13 +138,21 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
 bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
                                      const double* residual, const double* cap, Impulse which,
                                      Vec4* result) {
+  return with_impulse(which, [&](auto w) {
+    return solve_block<decltype(w)::value>(manifold, inverse, gamma, residual, cap, result);
+  });
+}
+
+template <ContactConstraints::Impulse which>
+bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
+                                     const double* residual, const double* cap, Vec4* result) {
   Manifold& m = manifolds_[manifold];
   const int count = static_cast<int>(m.count);
   // Plain arrays, not packets: the impulses arrive one by one, and a packet load of values
   // just stored one by one waits for the stores.
   double old[max_manifold_points] = {0.0, 0.0, 0.0, 0.0}, r[max_manifold_points] = {0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < count; ++i) {
-    old[i] = impulse_of(m.first + i, which);
+    old[i] = impulse_of<which>(m.first + i);
     r[i] = residual[i] + gamma * old[i];
   }
   const double* c = blocks_[manifold].null.data();
@@ -152,7 +176,7 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, 
     total += change;
     angular_a += change * row.weighted_a;
     angular_b += change * row.weighted_b;
-    impulse_of(m.first + i, which) = next[i];
+    impulse_of<which>(m.first + i) = next[i];
   }
   a.velocity -= (a.inverse_mass * total) * m.normal;
   a.angular_velocity -= angular_a;
@@ -220,8 +244,17 @@ void ContactConstraints::SubsetFactor::solve(const Eigen::Vector4d& right,
 // nothing applied, when the free rows' matrix is singular or the bounds are not settled in
 // as many passes as rows.
 bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
-                                      const double* residual_in, const double* gamma,
+                                      const double* residual, const double* gamma,
                                       const double* cap, Impulse which, const Vec4* first) {
+  return with_impulse(which, [&](auto w) {
+    return solve_subset<decltype(w)::value>(manifold, active, residual, gamma, cap, first);
+  });
+}
+
+template <ContactConstraints::Impulse which>
+bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
+                                      const double* residual_in, const double* gamma,
+                                      const double* cap, const Vec4* first) {
   Manifold& m = manifolds_[manifold];
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
@@ -231,7 +264,7 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
   bool held[max_manifold_points] = {false, false, false, false};
   for (int i = 0; i < count; ++i) {
     if (!active[i]) continue;
-    old[i] = impulse_of(m.first + i, which);
+    old[i] = impulse_of<which>(m.first + i);
     residual[i] = residual_in[i];
   }
   auto upper = [&](int i) { return cap != nullptr ? cap[i] : unbounded; };
@@ -292,13 +325,22 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
       for (int i = 0; i < count; ++i) {
         if (!active[i]) continue;
         const std::uint32_t k = m.first + i;
-        apply_normal(m.normal, k, a, b, next[i] - impulse_of(k, which));
-        impulse_of(k, which) = next[i];
+        apply_normal(m.normal, k, a, b, next[i] - impulse_of<which>(k));
+        impulse_of<which>(k) = next[i];
       }
       return true;
     }
   }
   return false;
 }
+
+template bool ContactConstraints::solve_block<ContactConstraints::Impulse::sweep>(
+    std::size_t, const Mat4&, double, const double*, const double*, Vec4*);
+template bool ContactConstraints::solve_block<ContactConstraints::Impulse::push>(
+    std::size_t, const Mat4&, double, const double*, const double*, Vec4*);
+template bool ContactConstraints::solve_subset<ContactConstraints::Impulse::sweep>(
+    std::size_t, const bool*, const double*, const double*, const double*, const Vec4*);
+template bool ContactConstraints::solve_subset<ContactConstraints::Impulse::push>(
+    std::size_t, const bool*, const double*, const double*, const double*, const Vec4*);
 
 }  // namespace rigidlab

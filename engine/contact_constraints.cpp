@@ -429,12 +429,12 @@ double ContactConstraints::solve_normals(std::size_t manifold) {
     constexpr bool push = mode == NormalMode::push;
     Vec4 start;
     if (all_active) {
-      if (solve_block(manifold, push ? block.soft_inverse : block.rigid_inverse,
-                      push ? m.compliance : 0.0, residual,
-                      mode == NormalMode::relax ? cap : nullptr, which, &start) ||
-          solve_subset(manifold, active, residual, gamma, cap, which, &start))
+      if (solve_block<which>(manifold, push ? block.soft_inverse : block.rigid_inverse,
+                             push ? m.compliance : 0.0, residual,
+                             mode == NormalMode::relax ? cap : nullptr, &start) ||
+          solve_subset<which>(manifold, active, residual, gamma, cap, &start))
         return largest;
-    } else if (solve_subset(manifold, active, residual, gamma, cap, which, nullptr)) {
+    } else if (solve_subset<which>(manifold, active, residual, gamma, cap, nullptr)) {
       return largest;
     }
   }
@@ -444,7 +444,7 @@ double ContactConstraints::solve_normals(std::size_t manifold) {
     normal_bias(m, k, mode, bias[i], soft[i]);
     // solve_row (engine/constraint_row.hpp) on this mode's impulse within [0, cap], without
     // copying the point's row into a ConstraintRow.
-    double& impulse = impulse_of(k, which);
+    double& impulse = impulse_of<which>(k);
     const double v = normal_velocity(m.normal, k, a, b);
     const double total =
         updated_impulse(normals_[k].mass, impulse, v, bias[i], soft[i], 0.0, cap[i]);

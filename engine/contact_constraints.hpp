@@ -411,10 +411,24 @@ class ContactConstraints {
     if (m.block_state != prepared) prepare_block(manifold, m.block_state == unprepared);
     return m.block;
   }
+  template <Impulse which>
+  double& impulse_of(std::uint32_t k) {
+    if constexpr (which == Impulse::sweep) return normals_[k].impulse;
+    else if constexpr (which == Impulse::round) return points_[k].round_impulse;
+    else return normals_[k].push_impulse;
+  }
   bool solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
                    const double* residual, const double* cap, Impulse which, Vec4* result);
   bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
                     const double* gamma, const double* cap, Impulse which, const Vec4* first);
+  // The same as templates on `which` (the sweeps' calls: the impulse is known where they are
+  // compiled); the two above call these.
+  template <Impulse which>
+  bool solve_block(std::size_t manifold, const Mat4& inverse, double gamma,
+                   const double* residual, const double* cap, Vec4* result);
+  template <Impulse which>
+  bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
+                    const double* gamma, const double* cap, const Vec4* first);
 
   // contact_restitution.cpp
   void mark_supported(const Acceleration* acceleration);
