@@ -62,9 +62,11 @@ void ContactConstraints::prepare_block(std::size_t manifold, bool soft_too) {
   Manifold& m = manifolds_[manifold];
   m.block = false;
   m.block_state = prepared;
-  for (auto& kept : blocks_[manifold].subset) kept[0].key = kept[1].key = SubsetFactor::none;
   const int count = static_cast<int>(m.count);
+  // A lone point has no block, and its Block (1 kB) is never read: left untouched, a heap of
+  // spheres keeps its blocks_ (13 MB at 4,096) out of the caches.
   if (count < 2) return;
+  for (auto& kept : blocks_[manifold].subset) kept[0].key = kept[1].key = SubsetFactor::none;
   const SolverBody& a = found_with_[m.a];
   const SolverBody& b = found_with_[m.b];
   Eigen::Matrix4d k = Eigen::Matrix4d::Identity();  // unused rows and columns: decoupled
