@@ -436,6 +436,7 @@ class ContactConstraints {
   double turned_target(const Manifold& m, double w, double a_n) const;
   double normal_acceleration(const Manifold& m, const Point& p) const;
   bool start_round(bool first);
+  void end_round(Point& p);
   void link_bodies();
   void gather_round(int hops);
   double round_sweep(bool forward, double& peak);

@@ -220,7 +220,13 @@ double ContactConstraints::round_sweep(bool forward, double& peak) {
   return largest;
 }
 
-// Opens the next round (see the header). Its impacts: in the first round the points that came
+// Closes a round at a point: its increment joins the restitution impulse, and it took part.
+void ContactConstraints::end_round(Point& p) {
+  p.restitution_impulse += p.round_impulse;
+  if (in_round(p.flags)) p.flags |= took_part;
+}
+
+// Opens the next round (see the header), after closing the previous one (end_round). Its impacts: in the first round the points that came
 // in by themselves during the step (their impact velocity w from the start of the step < 0):
 // fast ones bounce, the others that had a gap at the start land; in a later round the points
 // that had a gap at the start, touch now and come in, pushed by an earlier impact (w their
@@ -234,6 +240,7 @@ bool ContactConstraints::start_round(bool first) {
   for (const Manifold& m : manifolds_) {
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       Point& p = points_[k];
+      if (!first) end_round(p);
       p.round_impulse = 0.0;
       p.target = (p.flags & opened) ? -p.end_separation / h_ : 0.0;
       if (p.flags & event) p.flags = static_cast<std::uint8_t>((p.flags & ~event) | fired);
@@ -412,11 +419,11 @@ void ContactConstraints::restitution(SolverBody* solver, const Acceleration* acc
     }
     record.solves = round_solves_;
     rounds_.push_back(record);
-    for (Point& p : points_) {
-      p.restitution_impulse += p.round_impulse;
-      if (in_round(p.flags)) p.flags |= took_part;
-    }
   }
+  // The next start_round closed each round (one pass over the points instead of two); the
+  // last of max_rounds has none.
+  if (rounds_.size() == static_cast<std::size_t>(max_rounds))
+    for (Point& p : points_) end_round(p);
 }
 
 }  // namespace rigidlab
