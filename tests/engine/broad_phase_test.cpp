@@ -495,6 +495,38 @@ TEST(BroadPhase, KeyReusedInTheSameStep) {
   EXPECT_EQ(bp.check(), "");
 }
 
+// Whether a pair is new is decided from the fat boxes of the last update (has_pair): a proxy
+// that moves away and back between two updates, or two proxies that both move, keep the pair
+// they had (not added again), and a pair that comes apart and together again in one update
+// is neither removed nor added. Independent reference: the pairs before and after.
+TEST(BroadPhase, PairsKnownFromTheFatBoxesOfTheLastUpdate) {
+  BroadPhase bp(BroadPhaseSettings{0.0, 0.0, 0.0});  // fat = tight: every move re-inserts
+  const Aabb here = box_around(Vec3::Zero(), Vec3::Constant(0.5));
+  const Aabb near = box_around(Vec3(0.8, 0, 0), Vec3::Constant(0.5));
+  const Aabb far = box_around(Vec3(9, 0, 0), Vec3::Constant(0.5));
+  const ProxyId a = bp.create_proxy(here, 1);
+  const ProxyId b = bp.create_proxy(near, 2);
+  bp.update_pairs();
+  ASSERT_EQ(bp.pairs().size(), 1u);
+  ASSERT_EQ(bp.added().size(), 1u);
+  bp.move_proxy(a, far);   // apart ...
+  bp.move_proxy(a, here);  // ... and back before the update
+  bp.move_proxy(b, box_around(Vec3(0.7, 0, 0), Vec3::Constant(0.5)));  // both moved
+  bp.update_pairs();
+  EXPECT_EQ(bp.pairs().size(), 1u);
+  EXPECT_TRUE(bp.added().empty());
+  EXPECT_TRUE(bp.removed().empty());
+  bp.move_proxy(a, far);
+  bp.update_pairs();
+  EXPECT_TRUE(bp.pairs().empty());
+  EXPECT_EQ(bp.removed().size(), 1u);
+  bp.move_proxy(b, far);  // b comes to a, which did not move: a new pair
+  bp.update_pairs();
+  ASSERT_EQ(bp.pairs().size(), 1u);
+  EXPECT_EQ(bp.added().size(), 1u);
+  EXPECT_EQ(bp.check(), "");
+}
+
 TEST(BroadPhase, QueryAndRayCastSeeTightBoxes) {
   Scene scene(9, 10.0);
   for (int i = 0; i < 200; ++i) scene.add_random();
