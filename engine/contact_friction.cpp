@@ -129,10 +129,13 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
   // The velocities in locals (as solve_friction): row_velocity and apply_row term for term,
   // without reading back what the previous row's update stored.
   Vec3 va = a.velocity, wa = a.angular_velocity, vb = b.velocity, wb = b.angular_velocity;
+  // The twist row has no linear part (angular_jacobian): J v and the update of its row have
+  // no linear terms (they were sums of products with zeros, which change no velocity).
   const Vec3 dv = vb - va;
+  const Jacobian& twist = rows[2].jacobian;
   const Eigen::Vector3d velocity(jacobian_velocity(rows[0].jacobian, dv, wa, wb),
                                  jacobian_velocity(rows[1].jacobian, dv, wa, wb),
-                                 jacobian_velocity(rows[2].jacobian, dv, wa, wb));
+                                 twist.angular_b.dot(wb) - twist.angular_a.dot(wa));
   Eigen::Vector3d next = old - patch.inverse * velocity;
   const double limit = m.friction * load, twist_limit = m.friction * lever;
   const double length_squared = next[0] * next[0] + next[1] * next[1];
@@ -145,9 +148,11 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
   const double ma = a.inverse_mass, mb = b.inverse_mass;
   for (int i = 0; i < 3; ++i) {
     const double lambda = next[i] - old[i];
-    va -= (ma * lambda) * rows[i].jacobian.linear;
+    if (i < 2) {
+      va -= (ma * lambda) * rows[i].jacobian.linear;
+      vb += (mb * lambda) * rows[i].jacobian.linear;
+    }
     wa -= lambda * rows[i].weighted_a;
-    vb += (mb * lambda) * rows[i].jacobian.linear;
     wb += lambda * rows[i].weighted_b;
     rows[i].impulse = next[i];
   }
