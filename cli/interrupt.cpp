@@ -122,7 +122,12 @@ KeyWait wait_for_key(int fd) {
     struct pollfd input {};
     input.fd = fd;
     input.events = POLLIN;
-    if (ppoll(&input, 1, nullptr, &while_waiting) >= 0 || errno != EINTR) break;
+    if (ppoll(&input, 1, nullptr, &while_waiting) >= 0 || errno != EINTR) {
+      // Input: unless a Ctrl-C was taken meanwhile by another thread (no other thread should
+      // take one, see Watchdog::arm; this keeps the key for the next line if one does).
+      if (prompt_interrupted != 0) result = KeyWait::interrupted;
+      break;
+    }
     // EINTR: a flag above says which signal; another one (SIGCONT, say): wait on.
   }
   sigprocmask(SIG_SETMASK, &previous, nullptr);

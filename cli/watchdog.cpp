@@ -1,5 +1,6 @@
 #include "cli/watchdog.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -30,7 +31,7 @@ void Watchdog::arm(double seconds) {
                                    std::chrono::duration<double>(seconds < 1e9 ? seconds : 1e9));
     passed_ = false;
   }
-  if (!thread_.joinable()) thread_ = std::thread(&Watchdog::watch, this);
+  if (!thread_.joinable()) start_thread();
   changed_.notify_all();
 }
 
@@ -40,6 +41,23 @@ void Watchdog::disarm() {
     armed_ = false;
   }
   changed_.notify_all();
+}
+
+// The watchdog's thread takes no signal. A thread starts with its creator's signal mask, and
+// the kernel may give a process's signal to any thread that does not block it: a Ctrl-C taken
+// here would set the REPL's flag without waking the main thread from its wait for a key
+// (cli/interrupt.hpp, wait_for_key), and the line would be cleared a key late.
+void Watchdog::start_thread() {
+  sigset_t all, previous;
+  sigfillset(&all);
+  pthread_sigmask(SIG_SETMASK, &all, &previous);
+  try {
+    thread_ = std::thread(&Watchdog::watch, this);
+  } catch (...) {
+    pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+    throw;
+  }
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
 }
 
 // Sleeps until the deadline (or a change of it); raises the flag there, and gives up when the

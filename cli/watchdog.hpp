@@ -32,6 +32,7 @@ class Watchdog {
 
  private:
   using Clock = std::chrono::steady_clock;
+  void start_thread();
   void watch();
   [[noreturn]] void give_up();
 

@@ -63,6 +63,31 @@ wait_for "Tab on a missing global returns" '^16$'
 key C-d
 wait_exit "Ctrl-D at the prompt exits 0" 0
 
+# With a time limit the REPL has a second thread, the watchdog's. The kernel gives a Ctrl-C to
+# any thread that does not block it, and one taken there would not wake the main thread from
+# its wait for a key: every thread but the main one must block SIGINT (cli/watchdog.cpp).
+start HOME="$home" -- --timeout 1000
+wait_for "with --timeout: the prompt" '^> $'
+enter 'print("timed")'
+wait_for "with --timeout: a chunk runs" '^timed$'
+case_name="with --timeout: only the main thread takes Ctrl-C"
+shell=$(tmux -S "$socket" display -p '#{pane_pid}' 2>/dev/null || true)
+pid=$(pgrep -P "${shell:-0}" 2>/dev/null | head -1 || true)
+if [[ -n $pid && -r /proc/$pid/task ]]; then
+  others=0 taking=0
+  for task in /proc/"$pid"/task/*; do
+    [[ ${task##*/} == "$pid" ]] && continue
+    others=$((others + 1))
+    blocked=$(awk '/^SigBlk:/ {print $2}' "$task/status")
+    ((16#$blocked & 2)) || taking=$((taking + 1))  # bit 1: SIGINT (2)
+  done
+  ((others > 0 && taking == 0)) && pass || fail "$others other threads, $taking of them take SIGINT"
+else
+  echo "no /proc/PID/task to read: the thread check is skipped"
+fi
+key C-d
+wait_exit "with --timeout: Ctrl-D exits 0" 0
+
 # A Ctrl-C that comes while the REPL is still handling a key (here: echoing it, with every
 # write(2) made 0.3 s slow by strace) clears the line at once. It used to be noticed only when
 # the next line was entered, and that line was dropped: '1+3*3' silently, no '9'.
