@@ -154,6 +154,11 @@ inline double velocity_along(const Vec3& linear, const Vec3& angular_a, const Ve
                              const Vec3& dv, const Vec3& w_a, const Vec3& w_b) {
   return linear.dot(dv) + angular_b.dot(w_b) - angular_a.dot(w_a);
 }
+// The same for a Jacobian with no linear part (a twist row: angular_jacobian).
+inline double angular_velocity_along(const Vec3& angular_a, const Vec3& angular_b,
+                                     const Vec3& w_a, const Vec3& w_b) {
+  return angular_b.dot(w_b) - angular_a.dot(w_a);
+}
 inline double jacobian_velocity(const Jacobian& j, const Vec3& dv, const Vec3& w_a,
                                 const Vec3& w_b) {
   return velocity_along(j.linear, j.angular_a, j.angular_b, dv, w_a, w_b);

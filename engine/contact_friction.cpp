@@ -135,7 +135,7 @@ void ContactConstraints::solve_patch(std::size_t manifold) {
   const Jacobian& twist = rows[2].jacobian;
   const Eigen::Vector3d velocity(jacobian_velocity(rows[0].jacobian, dv, wa, wb),
                                  jacobian_velocity(rows[1].jacobian, dv, wa, wb),
-                                 twist.angular_b.dot(wb) - twist.angular_a.dot(wa));
+                                 angular_velocity_along(twist.angular_a, twist.angular_b, wa, wb));
   Eigen::Vector3d next = old - patch.inverse * velocity;
   const double limit = m.friction * load, twist_limit = m.friction * lever;
   const double length_squared = next[0] * next[0] + next[1] * next[1];
