@@ -388,14 +388,6 @@ class ContactConstraints {
   double sweep_as(SolverBody* solver, bool forward, SolverBody* push);
   // Which impulse of a point a block solve accumulates.
   enum class Impulse { sweep, round, push };
-  double& impulse_of(std::uint32_t k, Impulse which) {
-    switch (which) {
-      case Impulse::sweep: return normals_[k].impulse;
-      case Impulse::round: return points_[k].round_impulse;
-      case Impulse::push: break;
-    }
-    return normals_[k].push_impulse;
-  }
 
   // contact_blocks.cpp
   // The rigid block matrices, and the soft ones (push sweeps) with soft_too.
