@@ -108,6 +108,11 @@ void ContactConstraints::warm_start(SolverBody* solver) {
   // Impulses scale with the step: a resting contact carries m g Δt.
   const double scale = last_dt_ > 0.0 ? h_ / last_dt_ : 1.0;
   cold_points_ = 0;
+  // The chains of new points (measure_cold_chain) start at the fixed bodies and the ground.
+  chain_.resize(ground_ + 1);
+  for (std::size_t i = 0; i <= ground_; ++i)
+    chain_[i] = i == ground_ || solver[i].inverse_mass == 0.0 ? 0 : unreached;
+  cold_manifolds_.clear();
   const ContactInfo* hint = contacts_.data();
   patches_.resize(manifolds_.size());
   for (Manifold& m : manifolds_) {
@@ -119,12 +124,16 @@ void ContactConstraints::warm_start(SolverBody* solver) {
     if (!patch && may_be_patch(m)) prepare_friction(m, a, b);  // add_manifold left them
     const auto [first, last] = previous_points(m, hint);
     hint = last;
+    bool cold_touching = false;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       const ContactInfo* found = previous_point(points_[k], first, last);
+      const bool touches = points_[k].separation <= touch_tolerance();
       if (found == nullptr) {
         ++cold_points_;
+        cold_touching = cold_touching || touches;
         continue;
       }
+      if (touches) chain_[m.a] = chain_[m.b] = 0;  // held by a warm-started point
       NormalRow& normal = normals_[k];
       FrictionRows& f = frictions_[k];
       normal.impulse = scale * found->sweep_impulse;
@@ -136,7 +145,32 @@ void ContactConstraints::warm_start(SolverBody* solver) {
       apply_row(f.tangent2, a, b, f.tangent2.impulse);
     }
     if (patch) warm_start_patch(index);
+    if (cold_touching) cold_manifolds_.push_back(static_cast<std::uint32_t>(index));
   }
+  measure_cold_chain();
+}
+
+// The longest chain of new touching contacts (cold_chain): each body's fewest new contacts in
+// series down to what holds it (a fixed body, the ground, or a body with a warm-started point
+// that touches), by relaxing the manifolds of new touching points until nothing changes
+// (Bellman-Ford: as many passes as the chain is long, over those manifolds only). A body that
+// no chain reaches rests on nothing held (it is free, or on other new contacts only that reach
+// no support): it carries no load to a support and is left out.
+void ContactConstraints::measure_cold_chain() {
+  cold_chain_ = 0;
+  if (cold_manifolds_.empty()) return;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const std::uint32_t mi : cold_manifolds_) {
+      std::uint32_t& a = chain_[manifolds_[mi].a];
+      std::uint32_t& b = chain_[manifolds_[mi].b];
+      if (a + 1 < b) b = a + 1, changed = true;
+      if (b + 1 < a) a = b + 1, changed = true;
+    }
+  }
+  for (const std::uint32_t mi : cold_manifolds_)
+    for (const std::uint32_t links : {chain_[manifolds_[mi].a], chain_[manifolds_[mi].b]})
+      if (links != unreached) cold_chain_ = std::max<std::size_t>(cold_chain_, links);
 }
 
 // An impact of this step with e > 0 (a gap at the start, touching after the positions moved)

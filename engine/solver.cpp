@@ -416,17 +416,32 @@ void Solver::push_group(const Group& g, bool feedback) {
 void Solver::solve() {
   const bool soft = kind == SolverKind::soft_step;
   report_.clear();
-  // sequential_impulses: a step where contacts begin has no warm start for them, and
-  // `iterations` sweeps carry a load only about as many bodies down a stack (Gauss-Seidel on
-  // a chain of n converges in ~n² sweeps): the rest of the stack falls through its supports
-  // for the first steps, until the warm start has caught up, and each layer stays sunk by
-  // that (under the slop, which the position sweeps leave alone): 2.8 mm for 5 boxes, 57 mm
-  // for a column of 20, 30 mm for the pyramid of 210. So on such a step the sweeps go on
-  // while they pay: until the largest velocity error is a millionth of the first sweep's,
-  // or the last 10 (or `iterations`) sweeps took less than 1 % off it (a heap's contacts
-  // can stall), at most max_iterations in all. The warm steps after keep `iterations`.
-  // (soft_step's push-out carries no load and takes such sinking out again.)
-  const bool converge = !soft && contacts_.cold_points() > 0;
+  // A step where contacts begin has no warm start for them, and `iterations` sweeps carry a
+  // load only about as many bodies down a stack (Gauss-Seidel on a chain of n converges in ~n²
+  // sweeps): the rest of the stack falls through its supports for the first steps, until the
+  // warm start has caught up. So on such a step the sweeps go on while they pay: until the
+  // largest velocity error is a millionth of the first sweep's, or the last 10 (or
+  // `iterations`) sweeps took less than 1 % off it (a heap's contacts can stall), at most
+  // max_iterations in all. The warm steps after keep `iterations`. Which steps:
+  // - sequential_impulses: every step where a point begins. Each layer stays sunk by what the
+  //   first steps lose (under the slop, which the position sweeps leave alone: 2.8 mm for 5
+  //   boxes, 57 mm for a column of 20, 30 mm for the pyramid of 210), and an impact's new
+  //   point (a gap) must reach down a resting column in its step too: with the soft_step rule
+  //   below, a column of 3 boxes still swayed at 3.6 cm/s (0.5 with this one) 20 steps after a
+  //   ball bounced on it (tests/engine/bounce_on_stack_test.cpp).
+  // - soft_step: the steps whose new touching points form a chain longer than the sweeps carry
+  //   a load down, n² > iterations (ContactConstraints::cold_chain: the pyramid of 210 on its
+  //   first step, n = 20). Its push-out lifts a sunk stack back, but not from everything:
+  //   without this, the pyramid's top sank 43-72 mm in its first 10 steps (0.05 mm with it),
+  //   and 10 of the add orders shuffled by mt19937 seeds 1 to 40 fell apart (the top 1.8-7.0
+  //   m away after 10 s; tests/engine/pyramid_creep_test.cpp). New points that land on
+  //   something held (a box on the floor or on a resting stack: n = 1; a settling heap:
+  //   n <= 2) or have a gap (no load yet) keep `iterations`: the rule of sequential_impulses
+  //   cost soft_step's settle/1024 5.8 times its time per step (bench/contacts_bench.cpp:
+  //   21.5 ms against 3.73; a heap has new points every step).
+  const std::size_t chain = contacts_.cold_chain();
+  const bool converge = soft ? chain * chain > static_cast<std::size_t>(settings.iterations)
+                             : contacts_.cold_points() > 0;
   const int most = converge ? ContactSettings::max_iterations : settings.iterations;
   const std::size_t window = static_cast<std::size_t>(std::max(settings.iterations, 10));
   for (int sweep = 0; sweep < most; ++sweep) {

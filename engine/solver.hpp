@@ -9,9 +9,11 @@
 //   warm start   apply the impulses each row ended the previous step with (scaled by the ratio
 //                of the time steps)
 //   solve        `iterations` Gauss-Seidel sweeps over joints then contacts, alternating
-//                direction, rigid on the velocities; soft_step also sweeps its soft position
-//                feedback ("with bias", below) each time; soft_step solves the equality rows
-//                of the joints that form a forest exactly in each sweep (engine/joint_tree.hpp)
+//                direction, rigid on the velocities (more on a step where contacts begin
+//                without a warm start: the cold start, engine/solver.cpp Solver::solve);
+//                soft_step also sweeps its soft position feedback ("with bias", below)
+//                each time, and solves the equality rows of the joints that form a forest
+//                exactly in each sweep (engine/joint_tree.hpp)
 //   integrate    the solver bodies record how far they moved (Δx = h (u + u_push), Δθ the
 //   positions    same) while the integrator's position stage moves the bodies
 //   relax        soft_step: `relax_iterations` rigid sweeps without position feedback, so the

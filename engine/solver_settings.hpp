@@ -24,8 +24,8 @@ std::optional<SolverKind> parse_solver(std::string_view name);
 struct ContactSettings {
   static constexpr int max_iterations = 1000;
   int iterations = 10;                 // velocity sweeps per substep (1 .. max_iterations;
-                                       // sequential_impulses sweeps on to convergence on a
-                                       // step where contacts begin: engine/solver.cpp)
+                                       // more, to convergence, on a step where contacts
+                                       // begin: engine/solver.cpp Solver::solve)
   int relax_iterations = 4;            // soft_step: rigid sweeps after the positions moved
   int position_iterations = 3;         // sequential_impulses: position sweeps (Box2D: 3)
   double restitution_threshold = 1.0;  // m/s: slower impacts do not bounce (Box2D: 1 m/s)
