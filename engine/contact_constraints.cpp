@@ -58,7 +58,13 @@ std::string contact_settings_problem(const ContactSettings& s) {
 // The previous step's points of manifold m's pair (same bodies or plane): [first, last) of
 // contacts_, found once per manifold. `hint` is where the pair's points would be if they
 // followed the previous manifold's (the manifolds of a body's pairs come in the order of
-// contacts_): checked first, a binary search when they do not start there.
+// contacts_): checked first; when they do not start there, searched from it. The manifolds
+// come as two runs in the order of contacts_ (find: the plane manifolds body by body, then
+// the pairs), but contacts_ puts a body's plane points after its pairs' points, so the hint
+// misses for every plane manifold and for each body's first pair: a binary search over all of
+// contacts_ then cost log₂ of the points in cache misses (settle/4096: 12k points, 1.8 MB).
+// Forward of the hint the search gallops (1, 2, 4, ... points on, then a binary search in the
+// last stride): a few points, in cache. The same point as std::lower_bound over all.
 std::pair<const ContactInfo*, const ContactInfo*> ContactConstraints::previous_points(
     const Manifold& m, const ContactInfo* hint) const {
   const ContactInfo* begin = contacts_.data();
@@ -68,10 +74,21 @@ std::pair<const ContactInfo*, const ContactInfo*> ContactConstraints::previous_p
   };
   const ContactInfo* first = hint;
   if (!(hint != end && same_pair(*hint) && (hint == begin || !same_pair(hint[-1])))) {
+    const auto key = sort_key(m.id_a, m.id_b, m.plane, 0);
     auto less = [](const ContactInfo& info, const auto& k) { return sort_key(info) < k; };
-    first = begin + (std::lower_bound(contacts_.begin(), contacts_.end(),
-                                      sort_key(m.id_a, m.id_b, m.plane, 0), less) -
-                     contacts_.begin());
+    const ContactInfo* from = begin;
+    const ContactInfo* to = end;
+    if (hint != end && less(*hint, key)) {  // after the hint: gallop
+      std::size_t stride = 1;
+      from = hint;  // less than key
+      while (static_cast<std::size_t>(end - from) > stride && less(from[stride], key))
+        from += stride, stride *= 2;
+      to = static_cast<std::size_t>(end - from) > stride ? from + stride : end;
+      ++from;
+    } else if (hint != end) {  // at or before the hint
+      to = hint + 1;
+    }
+    first = std::lower_bound(from, to, key, less);
   }
   const ContactInfo* last = first;
   while (last != end && same_pair(*last)) ++last;
