@@ -86,10 +86,11 @@ const Property properties[] = {
      "\"soft_step\" (default) or \"sequential_impulses\": how contacts and joints are solved",
      nullptr, nullptr},
     {"iterations", get_setting, set_setting,
-     "velocity sweeps per substep (10); more make tall stacks and chains stiffer. "
-     "sequential_impulses sweeps on to convergence (at most 1000) on a substep where new "
-     "contacts begin, which have no warm start yet", nullptr,
-     &iterations},
+     "velocity sweeps per substep (10); more make tall stacks and chains stiffer. New "
+     "contacts have no warm start yet, so a substep sweeps on to convergence (at most 1000) "
+     "where they begin: sequential_impulses wherever any begins, soft_step where new "
+     "touching contacts form a chain under a body longer than the sweeps carry a load down",
+     nullptr, &iterations},
     {"relax_iterations", get_setting, set_setting,
      "soft_step: rigid sweeps after the positions moved (4)", nullptr, &relax_iterations},
     {"position_iterations", get_setting, set_setting,
