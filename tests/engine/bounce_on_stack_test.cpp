@@ -27,6 +27,7 @@
 #include <string>
 
 #include "engine/world.hpp"
+#include "tests/engine/both_solvers.hpp"
 #include "tests/engine/world_stacks.hpp"
 
 namespace rigidlab {
@@ -141,11 +142,7 @@ TEST_P(BounceOnStack, Rebound_AsFromTheFloor) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, BounceOnStack,
-                         testing::Values(SolverKind::soft_step, SolverKind::sequential_impulses),
-                         [](const testing::TestParamInfo<SolverKind>& info) {
-                           return std::string(solver_names[static_cast<int>(info.param)]);
-                         });
+INSTANTIATE_FOR_BOTH_SOLVERS(BounceOnStack);
 
 }  // namespace
 }  // namespace rigidlab

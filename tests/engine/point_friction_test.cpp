@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/world.hpp"
+#include "tests/engine/both_solvers.hpp"
 
 namespace rigidlab {
 namespace {
@@ -109,11 +110,7 @@ TEST_P(PointFriction, SpinningBallsMeetingHeadOnSlideWithinTheCone) {
   EXPECT_GT(friction_total.normalized().dot(slip_of_a.normalized()), 0.999);
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, PointFriction,
-                         testing::Values(SolverKind::soft_step, SolverKind::sequential_impulses),
-                         [](const testing::TestParamInfo<SolverKind>& info) {
-                           return std::string(solver_names[static_cast<int>(info.param)]);
-                         });
+INSTANTIATE_FOR_BOTH_SOLVERS(PointFriction);
 
 }  // namespace
 }  // namespace rigidlab

@@ -24,6 +24,7 @@
 #include <string>
 
 #include "engine/world.hpp"
+#include "tests/engine/both_solvers.hpp"
 #include "tests/engine/world_stacks.hpp"
 
 namespace rigidlab {
@@ -148,11 +149,7 @@ TEST(ColdStart, SettlingHeapKeepsItsSweeps) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, PyramidCreep,
-                         testing::Values(SolverKind::soft_step, SolverKind::sequential_impulses),
-                         [](const testing::TestParamInfo<SolverKind>& info) {
-                           return std::string(solver_names[static_cast<int>(info.param)]);
-                         });
+INSTANTIATE_FOR_BOTH_SOLVERS(PyramidCreep);
 
 }  // namespace
 }  // namespace rigidlab

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/world.hpp"
+#include "tests/engine/both_solvers.hpp"
 #include "tests/engine/world_stacks.hpp"
 
 namespace rigidlab {
@@ -129,11 +130,7 @@ TEST_P(StepUndo, AFailedStepThenARestoredStateStepLikeTheTwin) {
   expect_same_bodies(failing, twin);
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, StepUndo,
-                         testing::Values(SolverKind::soft_step, SolverKind::sequential_impulses),
-                         [](const testing::TestParamInfo<SolverKind>& info) {
-                           return std::string(solver_names[static_cast<int>(info.param)]);
-                         });
+INSTANTIATE_FOR_BOTH_SOLVERS(StepUndo);
 
 }  // namespace
 }  // namespace rigidlab

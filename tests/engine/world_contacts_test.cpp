@@ -16,6 +16,7 @@
 
 #include "engine/world.hpp"
 
+#include "tests/engine/both_solvers.hpp"
 #include "tests/engine/world_stacks.hpp"
 #include "tests/engine/allocation_counter.hpp"  // replaces operator new: counts allocations
 
@@ -713,11 +714,7 @@ TEST_P(WorldContacts, SteppingAllocatesNothingOnceWarm) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, WorldContacts,
-                         testing::Values(SolverKind::soft_step, SolverKind::sequential_impulses),
-                         [](const testing::TestParamInfo<SolverKind>& info) {
-                           return std::string(solver_names[static_cast<int>(info.param)]);
-                         });
+INSTANTIATE_FOR_BOTH_SOLVERS(WorldContacts);
 
 }  // namespace
 }  // namespace rigidlab
