@@ -103,7 +103,7 @@ TEST_P(PointFriction, SpinningBallsMeetingHeadOnSlideWithinTheCone) {
   // against that slip: b is dragged along a's surface, along +(0, 12, −9).
   // (Not checked: its size, μ J_n in Coulomb's law. The restitution stage resolves this impact
   // and adds its normal impulse without friction: the friction gets 0.6 N s, 0.2 J_n instead
-  // of 1.2 N s; see the report of this change.)
+  // of 1.2 N s, an open defect of the restitution stage.)
   EXPECT_NEAR(normal_total.x(), 3.0, 0.01 * 3.0);
   const Vec3 slip_of_a = Vec3(0, 30, 40).cross(Vec3(0.3, 0, 0));
   EXPECT_GT(friction_total.norm(), 0.1 * mu * 3.0);
