@@ -17,6 +17,9 @@ using namespace contact_detail;
 
 namespace {
 
+// m/s: below this a velocity error is rounding (a gap of 1e-14 m closed in a step of 1/60 s).
+constexpr double velocity_rounding = 1e-12;
+
 // f(std::integral_constant<Impulse, which>): the runtime `which` to the template's instance.
 template <class Impulse, class F>
 bool with_impulse(Impulse which, F&& f) {
@@ -51,6 +54,16 @@ Eigen::Vector4d affine_dependency(const double (&x)[4], const double (&y)[4]) {
   // Each minor is twice a triangle's area: collinear points leave only rounding.
   if (!(length > 1e-9 * size * size)) return Eigen::Vector4d::Zero();
   return c / length;
+}
+
+// Whether the rigid targets r of a manifold's points can all be met at once: for four points,
+// only when r has no component along K's null vector c (c·w = c·r whatever the impulses, as
+// cᵀK = 0). Up to rounding: a face resting flat has gaps of ±1e-16 m at its corners.
+bool consistent(const double* c, const double* r, int count) {
+  if (count < 4) return true;
+  double along = 0.0, size = 0.0;
+  for (int i = 0; i < 4; ++i) along += c[i] * r[i], size = std::max(size, std::abs(r[i]));
+  return std::abs(along) <= 1e-9 * size + velocity_rounding;
 }
 
 }  // namespace
@@ -167,6 +180,11 @@ bool ContactConstraints::solve_block(std::size_t manifold, const Mat4& inverse, 
   if (result != nullptr) *result = Vec4(next[0], next[1], next[2], next[3]);
   for (int i = 0; i < count; ++i)
     if (!(next[i] >= 0.0) || (cap != nullptr && next[i] > cap[i])) return false;
+  // Rigid rows of four points whose targets no motion of the face meets (c·r ≠ 0: a corner
+  // with a gap may close it, the others may not approach): K⁺ then gives the least-squares
+  // velocities, which sink two of the touching corners by |c·r|/2 each, and no impulse ≥ 0
+  // reaches every target. The true solution leaves a corner free of load (solve_subset).
+  if (gamma == 0.0 && !consistent(c, r, count)) return false;
   // The changes applied at once: the points share the normal (Δv = W Jᵀ Δλ of the block).
   SolverBody& a = solver_[m.a];
   SolverBody& b = solver_[m.b];
@@ -309,7 +327,7 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
           factor.make(matrix, n, 1e-12 * matrix.diagonal().maxCoeff());
           factor.key = key;
         }
-        if (!factor.ok) return false;
+        if (!factor.ok) break;
         Eigen::Vector4d solved;
         factor.solve(right, solved);
         for (int r = 0; r < n; ++r) next[index[r]] = solved[r];
@@ -323,13 +341,112 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
       if (!(next[i] >= 0.0)) next[i] = 0.0, held[i] = true, settled = false;
       else if (next[i] > upper(i)) next[i] = upper(i), held[i] = true, settled = false;
     }
-    if (settled) {
-      for (int i = 0; i < count; ++i) {
-        if (!active[i]) continue;
-        const std::uint32_t k = m.first + i;
-        apply_normal(m.normal, k, a, b, next[i] - impulse_of<which>(k));
-        impulse_of<which>(k) = next[i];
+    if (settled) break;
+  }
+  // The passes only ever hold rows, and a row held at zero may still approach, or a point of
+  // four rigid rows left free may still sink (the least-squares answer): then every pattern.
+  if (!complementary(k, taking, taken, old, next, residual, gamma, cap) &&
+      !solve_patterns(k, taking, taken, old, residual, gamma, cap, next))
+    return false;
+  for (int i = 0; i < count; ++i) {
+    if (!active[i]) continue;
+    const std::uint32_t k = m.first + i;
+    apply_normal(m.normal, k, a, b, next[i] - impulse_of<which>(k));
+    impulse_of<which>(k) = next[i];
+  }
+  return true;
+}
+
+// Whether `next` solves the rows' complementarity problem (the header's block, with bounds):
+// each λ'ᵢ within [0, capᵢ], and its row's w = r + K (λ' − λ) + Γ λ' (the velocity error the
+// impulses leave) ≥ 0 where λ'ᵢ is below its cap (not approaching, or closing a gap faster
+// than allowed), ≤ 0 where it is above zero (no pull, no push past the target). A soft row
+// between its bounds is left out: its block answer keeps no component along K's null vector
+// (prepare_block), so its w is not 0 there. Within rounding, relative to the velocities and
+// impulses at hand.
+bool ContactConstraints::complementary(const Mat4& k, const int* taking, int taken,
+                                       const Vec4& old, const Vec4& next, const Vec4& residual,
+                                       const double* gamma, const double* cap) {
+  double w[max_manifold_points], size = 0.0, load = 0.0;
+  for (int t = 0; t < taken; ++t) {
+    const int i = taking[t];
+    double change = gamma[i] * next[i];
+    for (int s = 0; s < taken; ++s) change += k(i, taking[s]) * (next[taking[s]] - old[taking[s]]);
+    w[t] = residual[i] + change;
+    size = std::max({size, std::abs(residual[i]), std::abs(change)});
+    load = std::max({load, std::abs(old[i]), std::abs(next[i])});
+  }
+  const double slack = 1e-9 * size + velocity_rounding, give = 1e-9 * load;
+  for (int t = 0; t < taken; ++t) {
+    const int i = taking[t];
+    const double upper = cap != nullptr ? cap[i] : unbounded;
+    if (!(next[i] >= -give) || next[i] > upper + give) return false;
+    const bool lower_held = next[i] <= give, upper_held = next[i] >= upper - give;
+    if (gamma[i] != 0.0 && !lower_held && !upper_held) continue;
+    if (!upper_held && w[t] < -slack) return false;
+    if (!lower_held && w[t] > slack) return false;
+  }
+  return true;
+}
+
+// Every pattern of rows free, held at zero and held at their caps, the most free first, until
+// one is complementary (above): for up to four rows, 16 patterns (81 with caps), each a solve
+// of the free rows (K_F + Γ_F) λ'_F = K_F λ − r_F − K_FH λ'_H. Only when the passes of
+// solve_subset settled on a wrong set: K + Γ is positive semi-definite, so the rows are a
+// convex quadratic program (minimise ½ λ'ᵀ(K + Γ)λ' + λ'ᵀ(r − K λ) over the box), whose
+// solutions all share one w, and the first pattern that passes is one of them. False when
+// none passes (singular free rows throughout).
+bool ContactConstraints::solve_patterns(const Mat4& k, const int* taking, int taken,
+                                        const Vec4& old, const Vec4& residual,
+                                        const double* gamma, const double* cap, Vec4& next) {
+  bool capped = false;
+  for (int t = 0; t < taken; ++t) capped = capped || (cap != nullptr && cap[taking[t]] < unbounded);
+  const int states = capped ? 3 : 2;  // free, at zero, at the cap
+  int patterns = 1;
+  for (int t = 0; t < taken; ++t) patterns *= states;
+  for (int free_rows = taken; free_rows >= 0; --free_rows) {
+    for (int code = 0; code < patterns; ++code) {
+      int state[max_manifold_points], n = 0, index[max_manifold_points];
+      bool possible = true;
+      for (int t = 0, rest = code; t < taken; ++t, rest /= states) {
+        state[t] = rest % states;
+        if (state[t] == 0) index[n++] = taking[t];
+        if (state[t] == 2 && !(cap[taking[t]] < unbounded)) possible = false;
       }
+      if (n != free_rows || !possible) continue;
+      Vec4 trial = Vec4::Zero();
+      for (int t = 0; t < taken; ++t)
+        if (state[t] == 2) trial[taking[t]] = cap[taking[t]];
+      if (n > 0) {
+        Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+        Eigen::Vector4d right = Eigen::Vector4d::Zero(), solved;
+        double diagonal = 0.0;
+        for (int r = 0; r < n; ++r) {
+          const int i = index[r];
+          for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
+          matrix(r, r) += gamma[i];
+          diagonal = std::max(diagonal, matrix(r, r));
+          double sum = -residual[i];
+          for (int t = 0; t < taken; ++t) {
+            const int j = taking[t];
+            sum += k(i, j) * (state[t] == 0 ? old[j] : old[j] - trial[j]);
+          }
+          right[r] = sum;
+        }
+        SubsetFactor factor;
+        // |det| against the diagonal's size to the n-th power: four rigid corners of a face
+        // (K singular) leave only rounding.
+        factor.make(matrix, n, 1e-10 * std::pow(diagonal, n));
+        if (!factor.ok) continue;
+        factor.solve(right, solved);
+        for (int r = 0; r < n; ++r) trial[index[r]] = solved[r];
+      }
+      if (!complementary(k, taking, taken, old, trial, residual, gamma, cap)) continue;
+      for (int t = 0; t < taken; ++t) {
+        const int i = taking[t];
+        trial[i] = std::clamp(trial[i], 0.0, cap != nullptr ? cap[i] : unbounded);
+      }
+      next = trial;
       return true;
     }
   }

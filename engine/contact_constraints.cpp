@@ -356,7 +356,10 @@ bool ContactConstraints::normal_bias(const Manifold& m, std::uint32_t k, NormalM
       // corners of a face resting flat (gaps of ±1e-16 m) all get the same soft row
       if (p.separation > landed_tolerance()) return false;
       soft = m.softness;
-      bias = std::max(soft.mass_scale * soft.bias_rate * p.separation,
+      // Pushed out to an overlap of push_slop_fraction of the point's slop, not to 0: see
+      // push_slop_fraction.
+      bias = std::max(soft.mass_scale * soft.bias_rate *
+                          std::min(p.separation + push_slop_fraction * p.slop, 0.0),
                       -settings_->contact_push_speed);
       return true;
     case NormalMode::relax:

@@ -54,8 +54,14 @@
 //   costs one 4 x 4 inverse. When only some points take part (a corner lifted off, a point
 //   with a gap in a manifold that otherwise touches) they are solved as a smaller block,
 //   (K_s + Γ_s) λ' = K_s λ − r over them (Γ_ii = 0 for a rigid row), so the manifold stays
-//   symmetric where it was. When a block would need a negative impulse somewhere its points
-//   are solved one by one.
+//   symmetric where it was. Every answer is checked against the complementarity conditions
+//   of its rows (each λ' in [0, cap]; a row at zero does not approach, a loaded row does not
+//   separate): the least-squares answer is right only when the targets are consistent (c·r
+//   = 0), and a face with one corner above a gap (v_n ≥ −s/Δt) and three touching (v_n ≥ 0)
+//   is not, so the block solve sank two touching corners by |c·r|/2 and a stack rocked
+//   (tests/engine/perturbed_stack_test.cpp). An answer that fails the check is replaced by
+//   the first pattern of free and held rows that passes (contact_blocks.cpp solve_patterns);
+//   only when none does are the points solved one by one.
 // - Restitution, at the end of the step (Box2D v3's b2ApplyRestitution runs after the substeps
 //   too): the positions have landed the bodies on the surface (a point that meets it during
 //   the step is brought to it, not through it), and the velocities are then set to the
@@ -433,6 +439,12 @@ class ContactConstraints {
   template <Impulse which>
   bool solve_subset(std::size_t manifold, const bool* active, const double* residual,
                     const double* gamma, const double* cap, const Vec4* first);
+  static bool complementary(const Mat4& k, const int* taking, int taken, const Vec4& old,
+                            const Vec4& next, const Vec4& residual, const double* gamma,
+                            const double* cap);
+  static bool solve_patterns(const Mat4& k, const int* taking, int taken, const Vec4& old,
+                             const Vec4& residual, const double* gamma, const double* cap,
+                             Vec4& next);
 
   // contact_restitution.cpp
   void mark_supported(const Acceleration* acceleration);
