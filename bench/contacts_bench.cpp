@@ -9,6 +9,10 @@
 //                 five planes whose floor grows with N (256, 1,024, 4,096), timed from 0.5 s to
 //                 1.5 s while they settle: ms per step and mean contacts per body (goal: per
 //                 body-step flat after accounting for the contacts per body);
+//   settle_baseline/N  the settle/N heap stepped by a hand-written sequential-impulse solver
+//                 (bench/settle_baseline.hpp: grid, one point per pair, warm start, friction
+//                 disk, the world's iterations), timed the same way: the per-contact cost the
+//                 machine gives for the same scene, to judge settle/N's growth with N against;
 //   bouncy/N      the same heap with restitution e = 0.5 (spheres and bin): impacts above the
 //                 1 m/s threshold bounce, and the restitution stage solves them to convergence
 //                 (goal: no more than a few times settle/N);
@@ -25,6 +29,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/settle_baseline_scene.hpp"
 #include "engine/world.hpp"
 #include "tests/engine/world_stacks.hpp"
 
@@ -77,36 +82,56 @@ void scattered(benchmark::State& state) { run_scattered(state, true); }
 
 // ---- spheres settling in a bin ------------------------------------------------------------------
 
+// Every size is timed over the same second of its settling (0.5 s to 1.5 s, restored from the
+// state at 0.5 s after each 60 steps), so the heaps compared are in the same state: timed step
+// by step from 0.5 s on, a small heap ran for 12 s (at rest, cheaper per contact) while a large
+// one was still landing. `step` advances one step, `restore` goes back to 0.5 s (untimed),
+// `contacts` counts the last step's points.
+template <class Step, class Restore, class Contacts>
+void time_window(benchmark::State& state, int n, Step step, Restore restore, Contacts contacts) {
+  constexpr long window = 60;
+  double total = 0.0;
+  long k = 0;
+  for (auto _ : state) {
+    if (k > 0 && k % window == 0) {
+      state.PauseTiming();
+      restore();
+      state.ResumeTiming();
+    }
+    step();
+    benchmark::ClobberMemory();
+    total += static_cast<double>(contacts());
+    ++k;
+  }
+  state.SetItemsProcessed(state.iterations() * n);
+  set_counters(state, 0.0, total / (static_cast<double>(k) * n));
+}
+
 void run_settle(benchmark::State& state, double restitution) {
   const int n = static_cast<int>(state.range(0));
   World w;
   fill_heap(w, n, restitution);
   w.step(dt, 30);  // half a second: they have landed on each other and are settling
-  // Every size is timed over the same second of its settling (0.5 s to 1.5 s, restored from
-  // the state at 0.5 s after each 60 steps), so the heaps compared are in the same state: timed
-  // step by step from 0.5 s on, a small heap ran for 12 s (at rest, cheaper per contact) while
-  // a large one was still landing.
-  constexpr long window = 60;
   WorldState start;
   w.save_state(start);
-  double contacts = 0.0;
-  long k = 0;
-  for (auto _ : state) {
-    if (k > 0 && k % window == 0) {
-      state.PauseTiming();
-      w.restore_state(start);
-      state.ResumeTiming();
-    }
-    w.step(dt);
-    benchmark::ClobberMemory();
-    contacts += static_cast<double>(w.contacts().size());
-    ++k;
-  }
-  state.SetItemsProcessed(state.iterations() * n);
-  set_counters(state, 0.0, contacts / (static_cast<double>(k) * n));
+  time_window(
+      state, n, [&] { w.step(dt); }, [&] { w.restore_state(start); },
+      [&] { return w.contacts().size(); });
 }
 void settle(benchmark::State& state) { run_settle(state, 0.0); }
 void bouncy(benchmark::State& state) { run_settle(state, 0.5); }
+
+// The same heap, window and restore, stepped by the baseline solver.
+void settle_baseline(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  baseline::SphereHeap heap = baseline::settling_heap(n, dt);
+  for (int k = 0; k < 30; ++k) heap.step();
+  baseline::State start;
+  heap.save(start);
+  time_window(
+      state, n, [&] { heap.step(); }, [&] { heap.restore(start); },
+      [&] { return heap.contact_count(); });
+}
 
 // ---- stacks: pyramid, column, stack ---------------------------------------------------------------
 
@@ -138,6 +163,9 @@ BENCHMARK(scattered)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMilli
 BENCHMARK(settle)->Arg(256)->Iterations(600)->Unit(benchmark::kMillisecond);
 BENCHMARK(settle)->Arg(1024)->Iterations(120)->Unit(benchmark::kMillisecond);
 BENCHMARK(settle)->Arg(4096)->Iterations(60)->Unit(benchmark::kMillisecond);
+BENCHMARK(settle_baseline)->Arg(256)->Iterations(600)->Unit(benchmark::kMillisecond);
+BENCHMARK(settle_baseline)->Arg(1024)->Iterations(120)->Unit(benchmark::kMillisecond);
+BENCHMARK(settle_baseline)->Arg(4096)->Iterations(60)->Unit(benchmark::kMillisecond);
 BENCHMARK(bouncy)->Arg(1024)->Iterations(120)->Unit(benchmark::kMillisecond);
 BENCHMARK(pyramid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(column)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
