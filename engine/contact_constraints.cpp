@@ -511,14 +511,17 @@ double ContactConstraints::solve_normals(std::size_t manifold) {
 void ContactConstraints::prepare_mode(NormalMode mode) {
   std::vector<ModeRow>& rows = mode_rows(mode).rows;
   rows.resize(points_.size());
+  bool idle = true;
   for (const Manifold& m : manifolds_)
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
       double bias;
       Softness soft;
       rows[k].active = normal_bias(m, k, mode, bias, soft);
       rows[k].offset = rows[k].active ? bias / soft.mass_scale : 0.0;
+      idle = idle && rows[k].offset == 0.0;
     }
   mode_rows(mode).ready = true;
+  mode_rows(mode).idle = idle;
 }
 
 double ContactConstraints::sweep(SolverBody* solver, NormalMode mode, bool forward,

@@ -234,6 +234,12 @@ class ContactConstraints {
   // no link. The pyramid of 210 on its first step: 20; a box landing on the floor or on a
   // resting stack: 1; a settling heap of spheres: at most 2 (measured, settle/256 to 4096).
   std::size_t cold_chain() const { return cold_chain_; }
+  // soft_step: no point of the substep is sunk beyond the push's slop, so the push sweeps have
+  // nothing to do (their velocities stay 0).
+  bool push_idle() {
+    if (!push_rows_.ready) prepare_mode(NormalMode::push);
+    return push_rows_.idle;
+  }
   // Every point of the last step (touched and speculative), ordered by body a, then body b or
   // plane, then feature.
   const std::vector<ContactInfo>& contacts() const { return contacts_; }
@@ -529,6 +535,7 @@ class ContactConstraints {
   struct ModeRows {
     std::vector<ModeRow> rows;
     bool ready = false;
+    bool idle = true;  // no active row has a bias (push: no overlap beyond the push's slop)
   };
   ModeRows velocity_rows_, push_rows_, relax_rows_;
   ModeRows& mode_rows(NormalMode mode) {

@@ -148,6 +148,8 @@ class Solver {
   const ContactConstraints& contact_constraints() const { return contacts_; }
 
  private:
+  // soft_step: whether the velocity sweeps have converged (engine/solver.cpp).
+  bool settled();
   struct Row {
     ConstraintRow row;
     double push_impulse;  // on the push velocities

@@ -89,7 +89,9 @@ const Property properties[] = {
      "velocity sweeps per substep (10); more make tall stacks and chains stiffer. New "
      "contacts have no warm start yet, so a substep sweeps on to convergence (at most 1000) "
      "where they begin: sequential_impulses wherever any begins, soft_step where new "
-     "touching contacts form a chain under a body longer than the sweeps carry a load down",
+     "touching contacts form a chain under a body longer than the sweeps carry a load down. "
+     "soft_step stops early once they have converged (without joints): a resting stack "
+     "takes two; w:solver_report() lists the sweeps run",
      nullptr, &iterations},
     {"relax_iterations", get_setting, set_setting,
      "soft_step: rigid sweeps after the positions moved (4)", nullptr, &relax_iterations},
