@@ -66,6 +66,19 @@ bool consistent(const double* c, const double* r, int count) {
   return std::abs(along) <= 1e-9 * size + velocity_rounding;
 }
 
+// The matrix of a subset's free rows, K_F + Γ_F (rows and columns index[0..n)), the rest of
+// it the identity: what solve_subset and solve_patterns factor.
+template <class Matrix>
+Eigen::Matrix4d free_rows_matrix(const Matrix& k, const int* index, int n, const double* gamma) {
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  for (int r = 0; r < n; ++r) {
+    const int i = index[r];
+    for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
+    matrix(r, r) += gamma[i];
+  }
+  return matrix;
+}
+
 }  // namespace
 
 // K = J W Jᵀ of the manifold's normal rows (coupling(), engine/constraint_row.hpp), then the
@@ -318,12 +331,7 @@ bool ContactConstraints::solve_subset(std::size_t manifold, const bool* active,
         SubsetFactor& factor = kept_factors[second ? 1 : 0];
         if (!second && factor.key != key) {
           std::swap(kept_factors[0], kept_factors[1]);  // the older one is replaced
-          Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
-          for (int r = 0; r < n; ++r) {
-            const int i = index[r];
-            for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
-            matrix(r, r) += gamma[i];
-          }
+          const Eigen::Matrix4d matrix = free_rows_matrix(k, index, n, gamma);
           factor.make(matrix, n, 1e-12 * matrix.diagonal().maxCoeff());
           factor.key = key;
         }
@@ -418,14 +426,11 @@ bool ContactConstraints::solve_patterns(const Mat4& k, const int* taking, int ta
       for (int t = 0; t < taken; ++t)
         if (state[t] == 2) trial[taking[t]] = cap[taking[t]];
       if (n > 0) {
-        Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+        const Eigen::Matrix4d matrix = free_rows_matrix(k, index, n, gamma);
+        const double diagonal = matrix.diagonal().head(n).maxCoeff();
         Eigen::Vector4d right = Eigen::Vector4d::Zero(), solved;
-        double diagonal = 0.0;
         for (int r = 0; r < n; ++r) {
           const int i = index[r];
-          for (int c = 0; c < n; ++c) matrix(r, c) = k(i, index[c]);
-          matrix(r, r) += gamma[i];
-          diagonal = std::max(diagonal, matrix(r, r));
           double sum = -residual[i];
           for (int t = 0; t < taken; ++t) {
             const int j = taking[t];
